@@ -1,0 +1,36 @@
+# SIMD kernels are compiled once per instruction set and picked at run time,
+# so one binary runs on any x86-64 and uses the widest vectors it finds.
+#
+# tessera_add_simd_kernels(<target> SOURCES <file.cpp>...) builds the sources three
+# times as OBJECT libraries <target>_sse4 / _avx2 / _avx512, each with its own -march
+# and TESSERA_SIMD_ARCH set to the matching xsimd architecture type, and adds their
+# objects to <target>. A kernel source instantiates its templates for
+# TESSERA_SIMD_ARCH and names its entry points with TESSERA_SIMD_SUFFIX.
+set(TESSERA_SIMD_LEVELS sse4 avx2 avx512)
+set(TESSERA_SIMD_MARCH_sse4 x86-64-v2)
+set(TESSERA_SIMD_MARCH_avx2 x86-64-v3)
+set(TESSERA_SIMD_MARCH_avx512 x86-64-v4)
+set(TESSERA_SIMD_ARCH_sse4 "xsimd::sse4_2")
+set(TESSERA_SIMD_ARCH_avx2 "xsimd::fma3<xsimd::avx2>")
+set(TESSERA_SIMD_ARCH_avx512 "xsimd::avx512bw")
+
+function(tessera_add_simd_kernels target)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LINK" ${ARGN})
+  # The lowest ISA comes first in link order: inline functions shared between
+  # the copies must resolve to code every x86-64 machine can run.
+  foreach(level IN LISTS TESSERA_SIMD_LEVELS)
+    set(obj ${target}_${level})
+    add_library(${obj} OBJECT ${ARG_SOURCES})
+    target_link_libraries(${obj} PRIVATE xsimd glm::glm tessera_warnings ${ARG_LINK})
+    target_include_directories(${obj} PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_SOURCE_DIR}/src)
+    target_compile_definitions(${obj} PRIVATE
+      "TESSERA_SIMD_ARCH=${TESSERA_SIMD_ARCH_${level}}"
+      "TESSERA_SIMD_SUFFIX=${level}")
+    target_compile_options(${obj} PRIVATE
+      -march=${TESSERA_SIMD_MARCH_${level}} -mtune=generic
+      # g++ 12 warns falsely inside avx512fintrin.h, and cannot build AVX-512 code at -O0.
+      -Wno-maybe-uninitialized $<$<CONFIG:Debug>:-Og>)
+    set_target_properties(${obj} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    target_sources(${target} PRIVATE $<TARGET_OBJECTS:${obj}>)
+  endforeach()
+endfunction()

@@ -1,0 +1,62 @@
+// Rendering a scene to an image: the whole pipeline behind one call.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessera/scene.hpp"
+
+namespace tessera {
+
+struct RenderSettings {
+    int threads = 0;        // worker threads; 0 = one per hardware thread
+    int tile_size = 32;     // screen tile side in pixels, a power of two in [8, 256]
+    std::string isa = "auto";  // shading kernels: auto | scalar | sse4 | avx2 | avx512
+};
+
+// A rendered frame, row 0 at the top of the picture.
+struct RenderedImage {
+    int width = 0;
+    int height = 0;
+    // Scene-linear HDR radiance before tonemapping, RGB interleaved: what EXR
+    // stores. Background pixels hold the radiance that tonemaps to the clear colour.
+    std::vector<float> radiance;
+    // Display-referred RGB8 after Reinhard and gamma 1/2.2: what PNG stores.
+    // Background pixels hold the clear colour, as glClear writes it.
+    std::vector<std::uint8_t> display;
+};
+
+// What one frame did and where its time went (wall-clock milliseconds).
+struct FrameStats {
+    std::uint64_t triangles_in = 0;          // submitted by the scene's objects
+    std::uint64_t triangles_binned = 0;      // left after clipping, culling and setup
+    std::uint64_t fragments_rasterized = 0;  // pixel centres covered, over all triangles
+    std::uint64_t fragments_shaded = 0;      // visible pixels, each shaded once
+    double vertex_ms = 0;
+    double setup_and_binning_ms = 0;  // clipping, triangle setup, binning
+    double tiles_ms = 0;              // rasterization, shading and resolve, per tile
+    double total_ms = 0;
+};
+
+// Renders scenes, keeping its frame memory from one frame to the next.
+class Renderer {
+public:
+    explicit Renderer(const RenderSettings& settings = {});  // throws std::invalid_argument
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // The returned image stays valid until the next render().
+    const RenderedImage& render(const Scene& scene);
+    const FrameStats& last_frame_stats() const;
+    std::string isa_name() const;  // the shading kernels in use
+    int threads() const;
+
+private:
+    struct Frame;
+    std::unique_ptr<Frame> frame_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,22 @@
+// Vertex stage: the reference vertex shader over every object's mesh.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "geometry/shaded_vertex.hpp"
+#include "tessera/scene.hpp"
+
+namespace tessera::geometry {
+
+// Inverse-transpose of the model's upper 3×3: keeps normals perpendicular
+// under non-uniform scale (the reference's comment on mat3(model)).
+glm::mat3 normal_matrix(const glm::mat4& model);
+
+// Transforms `mesh` placed by `model` into `out` (out.size() == mesh vertex count).
+void shade_vertices(const Mesh& mesh, const glm::mat4& model, const glm::mat4& view_projection,
+                    std::span<ShadedVertex> out);
+
+}  // namespace tessera::geometry

@@ -1,0 +1,44 @@
+#include "raster/binning.hpp"
+
+#include <algorithm>
+
+namespace tessera::raster {
+
+TileGrid::TileGrid(int image_width, int image_height, int tile_side)
+    : width(image_width),
+      height(image_height),
+      tile_size(tile_side),
+      tiles_x((image_width + tile_side - 1) / tile_side),
+      tiles_y((image_height + tile_side - 1) / tile_side) {}
+
+TileRect TileGrid::rect(int tile) const {
+    const int tx = tile % tiles_x, ty = tile / tiles_x;
+    return {tx * tile_size, ty * tile_size, std::min((tx + 1) * tile_size, width), std::min((ty + 1) * tile_size, height)};
+}
+
+namespace {
+
+// Calls f(tile) for each tile that the triangle's pixel box overlaps.
+template <class F>
+void for_each_tile(const TileGrid& grid, const RasterTriangle& t, F&& f) {
+    const int tx0 = t.px_min / grid.tile_size, tx1 = t.px_max / grid.tile_size;
+    const int ty0 = t.py_min / grid.tile_size, ty1 = t.py_max / grid.tile_size;
+    for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx) f(ty * grid.tiles_x + tx);
+}
+
+}  // namespace
+
+void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> triangles) {
+    offsets.assign(std::size_t(grid.tile_count()) + 1, 0);
+    for (const RasterTriangle& t : triangles) for_each_tile(grid, t, [&](int tile) { ++offsets[tile + 1]; });
+    for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
+    items.resize(offsets.back());
+    // Fill using offsets[t] as a cursor, then shift the cursors back.
+    for (std::uint32_t i = 0; i < triangles.size(); ++i)
+        for_each_tile(grid, triangles[i], [&](int tile) { items[offsets[tile]++] = i; });
+    for (std::size_t t = offsets.size() - 1; t > 0; --t) offsets[t] = offsets[t - 1];
+    offsets[0] = 0;
+}
+
+}  // namespace tessera::raster

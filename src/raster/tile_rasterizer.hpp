@@ -1,0 +1,56 @@
+// Tile rasterization: edge functions in fixed point with the top-left fill
+// rule, a 32-bit float depth test (LESS), and the screen-space barycentrics
+// of the nearest triangle kept per pixel. Shading happens afterwards, once per
+// visible pixel, so hidden fragments cost no shading at all; the result is what
+// forward shading with a LESS depth test and no blending would give.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/triangle_setup.hpp"
+
+namespace tessera::raster {
+
+inline constexpr std::uint32_t kNoTriangle = ~std::uint32_t{0};
+
+// A rectangle of pixels, [x0, x1) × [y0, y1).
+struct TileRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+// Per-pixel results of rasterizing one tile, row-major with a stride of `side`.
+// Owned by a worker and reused from tile to tile.
+struct TileBuffers {
+    int side = 0;
+    std::vector<float> depth;               // window depth of the nearest fragment, 1 = cleared
+    std::vector<std::uint32_t> triangle;    // its triangle id, kNoTriangle where none
+    std::vector<float> lambda1, lambda2;    // its screen-space barycentrics of corners 1 and 2
+    void reset(int tile_side);              // clears depth to 1 and triangle to kNoTriangle
+};
+
+// Counts of work done, summed over tiles.
+struct RasterCounters {
+    std::uint64_t fragments = 0;  // pixel centres covered
+    std::uint64_t depth_passed = 0;
+};
+
+// Perspective-correct barycentrics of corners 1 and 2 from the screen-space
+// ones stored per pixel: b_i ∝ λ_i / w_i (attributes are linear in world space,
+// not in screen space).
+struct Barycentrics {
+    float b1, b2;
+};
+inline Barycentrics perspective_barycentrics(const RasterTriangle& t, float lambda1, float lambda2) {
+    const float q0 = (1.0f - lambda1 - lambda2) * t.inv_w[0], q1 = lambda1 * t.inv_w[1], q2 = lambda2 * t.inv_w[2];
+    const float inv_sum = 1.0f / (q0 + q1 + q2);
+    return {q1 * inv_sum, q2 * inv_sum};
+}
+
+// Rasterizes one triangle into the part of the tile it covers.
+void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
+                        RasterCounters& counters);
+
+}  // namespace tessera::raster

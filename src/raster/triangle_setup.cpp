@@ -1,0 +1,65 @@
+#include "raster/triangle_setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "raster/raster_limits.hpp"
+
+namespace tessera::raster {
+
+namespace {
+
+// Smallest pixel index whose centre (i + 0.5, in fixed point) is >= v.
+std::int32_t first_centre_at_or_after(std::int32_t v) {
+    const std::int32_t half = kSubpixelScale / 2;
+    // ceil((v - half) / scale) with floor division for negatives.
+    const std::int32_t n = v - half + kSubpixelScale - 1;
+    return n >= 0 ? n / kSubpixelScale : -((-n + kSubpixelScale - 1) / kSubpixelScale);
+}
+
+// Largest pixel index whose centre is <= v.
+std::int32_t last_centre_at_or_before(std::int32_t v) {
+    const std::int32_t n = v - kSubpixelScale / 2;
+    return n >= 0 ? n / kSubpixelScale : -((-n + kSubpixelScale - 1) / kSubpixelScale);
+}
+
+}  // namespace
+
+std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
+                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material) {
+    RasterTriangle t;
+    t.material = material;
+    for (int i = 0; i < 3; ++i) {
+        const glm::vec4& p = clip_pos[i];
+        const float inv_w = 1.0f / p.w;
+        // OpenGL viewport transform, then y flipped so row 0 is the top.
+        const float x = (p.x * inv_w * 0.5f + 0.5f) * float(viewport.width);
+        const float y = (0.5f - p.y * inv_w * 0.5f) * float(viewport.height);
+        t.x[i] = static_cast<std::int32_t>(std::lrint(x * float(kSubpixelScale)));
+        t.y[i] = static_cast<std::int32_t>(std::lrint(y * float(kSubpixelScale)));
+        t.depth[i] = p.z * inv_w * 0.5f + 0.5f;
+        t.inv_w[i] = inv_w;
+        t.vertex[i] = vertex[i];
+    }
+    t.double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
+    if (t.double_area == 0) return std::nullopt;
+    if (t.double_area < 0) {
+        std::swap(t.x[1], t.x[2]);
+        std::swap(t.y[1], t.y[2]);
+        std::swap(t.depth[1], t.depth[2]);
+        std::swap(t.inv_w[1], t.inv_w[2]);
+        std::swap(t.vertex[1], t.vertex[2]);
+        t.double_area = -t.double_area;
+    }
+    const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
+    const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
+    t.px_min = std::max(first_centre_at_or_after(min_x), 0);
+    t.px_max = std::min(last_centre_at_or_before(max_x), viewport.width - 1);
+    t.py_min = std::max(first_centre_at_or_after(min_y), 0);
+    t.py_max = std::min(last_centre_at_or_before(max_y), viewport.height - 1);
+    // Most triangles of a finely tessellated mesh fall between pixel centres.
+    if (t.px_min > t.px_max || t.py_min > t.py_max) return std::nullopt;
+    return t;
+}
+
+}  // namespace tessera::raster

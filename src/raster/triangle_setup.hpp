@@ -1,0 +1,43 @@
+// Triangle setup: viewport transform, snapping to fixed point, orientation,
+// and the pixel box whose centres the triangle can cover.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+namespace tessera::raster {
+
+// A triangle ready to rasterize, in image space: x right, y down, row 0 at
+// the top of the picture, pixel (i, j) centred at (i + 0.5, j + 0.5).
+struct RasterTriangle {
+    std::array<std::int32_t, 3> x, y;   // corner positions, 24.8 fixed point
+    std::array<float, 3> depth;         // window depth z_ndc·0.5 + 0.5, in [0, 1]
+    std::array<float, 3> inv_w;         // 1 / clip w, for perspective correction
+    std::array<std::uint32_t, 3> vertex;  // the corners' vertex references (see ShadedVertex)
+    std::uint32_t material = 0;
+    std::int64_t double_area = 0;       // edge function of corner 2 against edge 0→1, > 0
+    std::int32_t px_min = 0, px_max = 0, py_min = 0, py_max = 0;  // inclusive pixel box, clamped to the image
+};
+
+struct Viewport {
+    int width = 0;
+    int height = 0;
+};
+
+// Maps clip positions to a RasterTriangle, or nothing when the triangle has
+// no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
+// so that the edge functions are positive inside (clockwise as seen on screen).
+std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
+                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material);
+
+// Edge function of the edge a→b at point p, all in fixed point: twice the
+// signed area of (a, b, p), positive when p lies inside a set-up triangle.
+inline std::int64_t edge_function(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t px,
+                                  std::int64_t py) {
+    return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+}  // namespace tessera::raster

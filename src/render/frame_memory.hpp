@@ -1,0 +1,34 @@
+// Everything a frame writes, kept from frame to frame so that a steady stream
+// of frames allocates nothing (page faults are expensive on our machines).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/shaded_vertex.hpp"
+#include "raster/binning.hpp"
+#include "raster/tile_rasterizer.hpp"
+#include "raster/triangle_setup.hpp"
+
+namespace tessera::render {
+
+// The scene's triangles are cut into chunks of at most this many, each set up
+// and binned on its own; chunk boundaries depend on the scene only.
+inline constexpr std::uint32_t kChunkTriangles = 4096;
+// A triangle id is (chunk << kChunkIdShift) | index in the chunk. Clipping
+// turns one triangle into at most 7, so a chunk holds fewer than 2^15.
+inline constexpr int kChunkIdShift = 15;
+inline constexpr std::uint32_t kMaxChunks = (raster::kNoTriangle >> kChunkIdShift);  // leaves kNoTriangle unused
+static_assert(kChunkTriangles * 7 < (1u << kChunkIdShift));
+
+// A run of one object's triangles and what setup made of them.
+struct Chunk {
+    std::uint32_t object = 0;
+    std::uint32_t first_triangle = 0;  // index into the mesh's triangles
+    std::uint32_t triangle_count = 0;
+    std::vector<raster::RasterTriangle> triangles;        // after clipping, culling and setup
+    std::vector<geometry::ShadedVertex> clipped_vertices;  // new corners made by clipping
+    raster::ChunkBins bins;
+};
+
+}  // namespace tessera::render

@@ -1,0 +1,497 @@
+// Scene files: TOML in, a validated tessera::Scene out.
+//
+// The format (every key not marked required is optional; any other key is an
+// error, so typos do not pass silently):
+//
+//   [output]                        # optional table
+//   width = 1280                    # integer in 1..kMaxImageDimension; default 1280
+//   height = 720                    # integer in 1..kMaxImageDimension; default 720
+//   clear_color = [0.1, 0.1, 0.1]   # display-referred RGB, each in [0, 1]; default (0.1, 0.1, 0.1)
+//
+//   [camera]                        # required table
+//   position = [0, 0, 22]           # required, world space
+//   target = [0, 0, 0]              # required, world space; must differ from position
+//   up = [0, 1, 0]                  # default (0, 1, 0); not parallel to target - position
+//   fov_y = 45.0                    # vertical field of view in degrees, in (0, 180); default 45
+//   near = 0.1                      # view-space distance, > 0; default 0.1
+//   far = 100.0                     # view-space distance, > near; default 100
+//
+//   [[lights]]                      # any number, including none
+//   type = "point"                  # default "point"; the only supported type for now
+//   position = [-10, 10, 10]        # required, world space
+//   color = [300, 300, 300]         # required, linear RGB · distance², each >= 0
+//
+//   [materials.rusty]               # named materials, any number; defaults are Material{}'s
+//   albedo = [0.5, 0, 0]            # linear RGB, each in [0, 1]
+//   metallic = 0.0                  # [0, 1]
+//   roughness = 0.5                 # [0, 1]
+//   ao = 1.0                        # [0, 1]
+//
+//   [[objects]]                     # any number, including none
+//   mesh = "sphere"                 # required: "sphere" | "plane" | "cube"
+//   material = "rusty"              # a name from [materials], or an inline table with the
+//                                   # same keys as a named material; default Material{}
+//   translate = [0, 0, 0]           # default (0, 0, 0)
+//   rotate = [0, 45, 0]             # Euler angles in degrees, applied X first, then Y, then Z
+//   scale = [1, 1, 1]               # a number (uniform) or a 3-array, every component non-zero
+//
+// An object's model matrix is translate · Rz · Ry · Rx · scale. Integers are
+// accepted wherever a number is expected; NaN and infinities are rejected.
+// Each built-in mesh is created once and shared by all objects that use it;
+// Scene::meshes and Scene::materials hold only what objects use, in order of
+// first use (each inline material is its own entry).
+//
+// Errors throw SceneError reading "file:line:column: message", the position
+// being that of the offending value (or of its table when a key is missing);
+// "file: message" where no position applies. Values are named by their path
+// in the document, e.g. 'objects[3].material.metallic'.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <toml++/toml.h>
+
+#include "tessera/scene.hpp"
+
+namespace tessera {
+namespace {
+
+constexpr std::string_view kSupportedMeshes = "sphere, plane, cube";
+constexpr std::string_view kSupportedLightTypes = "point";
+
+std::string_view type_name(toml::node_type type) {
+    switch (type) {
+        case toml::node_type::table: return "table";
+        case toml::node_type::array: return "array";
+        case toml::node_type::string: return "string";
+        case toml::node_type::integer: return "integer";
+        case toml::node_type::floating_point: return "floating-point";
+        case toml::node_type::boolean: return "boolean";
+        case toml::node_type::date: return "date";
+        case toml::node_type::time: return "time";
+        case toml::node_type::date_time: return "date-time";
+        case toml::node_type::none: break;
+    }
+    return "nothing";
+}
+
+template <typename T>
+std::string to_text(const T& value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+std::string join(std::initializer_list<std::string_view> words) {
+    std::string text;
+    for (const std::string_view word : words) {
+        if (!text.empty()) text += ", ";
+        text += word;
+    }
+    return text;
+}
+
+// An inclusive range a number must lie in, with its wording for messages.
+struct Bounds {
+    double min;
+    double max;
+    std::string_view text;
+};
+constexpr Bounds kUnitInterval{0.0, 1.0, "in [0, 1]"};
+constexpr Bounds kNonNegative{0.0, std::numeric_limits<double>::infinity(), ">= 0"};
+
+// Walks one parsed document; every check that fails throws with the document's
+// name and the offending node's position.
+class SceneReader {
+public:
+    explicit SceneReader(std::string source) : source_(std::move(source)) {}
+
+    Scene read(const toml::table& root) {
+        check_keys(root, "", {"output", "camera", "lights", "materials", "objects"});
+        Scene scene;
+        scene.source = source_;
+        if (const toml::node* output = root.get("output")) {
+            read_output(table_of(*output, "output"), scene);
+        }
+        const toml::node* camera = root.get("camera");
+        if (camera == nullptr) fail("missing required table [camera]");
+        scene.camera = read_camera(table_of(*camera, "camera"));
+        if (const toml::node* lights = root.get("lights")) read_lights(*lights, scene);
+        if (const toml::node* materials = root.get("materials")) read_named_materials(*materials);
+        if (const toml::node* objects = root.get("objects")) read_objects(*objects, scene);
+        return scene;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const {
+        throw SceneError(source_ + ": " + message);
+    }
+
+    [[noreturn]] void fail_at(const toml::source_region& where, const std::string& message) const {
+        // Tables toml++ creates implicitly (e.g. [materials] for [materials.a]) have no position.
+        if (where.begin.line == 0) fail(message);
+        throw SceneError(source_ + ":" + std::to_string(where.begin.line) + ":" +
+                         std::to_string(where.begin.column) + ": " + message);
+    }
+
+    [[noreturn]] void fail_type(const toml::node& node, std::string_view expected,
+                                const std::string& name) const {
+        fail_at(node.source(), "expected " + std::string(expected) + " for '" + name + "', got " +
+                                   std::string(type_name(node.type())));
+    }
+
+    static std::string child(const std::string& parent, std::string_view key) {
+        return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+    }
+
+    void check_keys(const toml::table& table, const std::string& name,
+                    std::initializer_list<std::string_view> valid) const {
+        for (auto&& [key, node] : table) {
+            bool known = false;
+            for (const std::string_view v : valid) known = known || key.str() == v;
+            if (known) continue;
+            const toml::source_region& where =
+                key.source().begin.line != 0 ? key.source() : node.source();
+            const std::string place = name.empty() ? "at top level" : "in '" + name + "'";
+            fail_at(where, "unknown key '" + std::string(key.str()) + "' " + place +
+                               "; valid keys: " + join(valid));
+        }
+    }
+
+    const toml::node& require(const toml::table& table, std::string_view key,
+                              const std::string& table_name) const {
+        const toml::node* node = table.get(key);
+        if (node == nullptr) {
+            fail_at(table.source(), "missing required key '" + child(table_name, key) + "'");
+        }
+        return *node;
+    }
+
+    const toml::table& table_of(const toml::node& node, const std::string& name) const {
+        const toml::table* table = node.as_table();
+        if (table == nullptr) fail_type(node, "a table", name);
+        return *table;
+    }
+
+    const toml::array& array_of_tables(const toml::node& node, const std::string& name) const {
+        const toml::array* array = node.as_array();
+        if (array == nullptr) fail_type(node, "an array of tables", name);
+        return *array;
+    }
+
+    double read_number(const toml::node& node, const std::string& name) const {
+        double value = 0.0;
+        if (const auto* integer = node.as_integer()) {
+            value = static_cast<double>(integer->get());
+        } else if (const auto* floating = node.as_floating_point()) {
+            value = floating->get();
+        } else {
+            fail_type(node, "a number", name);
+        }
+        // Checked as float too: 1e300 is a finite double but not a finite float.
+        if (!std::isfinite(value) || !std::isfinite(static_cast<float>(value))) {
+            fail_at(node.source(), "expected a finite number for '" + name + "', got " + to_text(value));
+        }
+        return value;
+    }
+
+    float read_float(const toml::node& node, const std::string& name,
+                     std::optional<Bounds> bounds = std::nullopt) const {
+        const double value = read_number(node, name);
+        if (bounds && !(value >= bounds->min && value <= bounds->max)) {
+            fail_at(node.source(), "expected '" + name + "' to be " + std::string(bounds->text) +
+                                       ", got " + to_text(value));
+        }
+        return static_cast<float>(value);
+    }
+
+    glm::vec3 read_vec3(const toml::node& node, const std::string& name,
+                        std::optional<Bounds> bounds = std::nullopt) const {
+        const toml::array* array = node.as_array();
+        if (array == nullptr) fail_type(node, "an array of 3 numbers", name);
+        if (array->size() != 3) {
+            fail_at(node.source(), "expected an array of 3 numbers for '" + name + "', got " +
+                                       std::to_string(array->size()) + " elements");
+        }
+        glm::vec3 result{};
+        for (int i = 0; i < 3; ++i) {
+            result[i] = read_float(*array->get(static_cast<std::size_t>(i)),
+                                   name + "[" + std::to_string(i) + "]", bounds);
+        }
+        return result;
+    }
+
+    int read_dimension(const toml::node& node, const std::string& name) const {
+        const auto* integer = node.as_integer();
+        if (integer == nullptr) fail_type(node, "an integer", name);
+        const std::int64_t value = integer->get();
+        if (value < 1 || value > kMaxImageDimension) {
+            fail_at(node.source(), "expected '" + name + "' to be in 1.." +
+                                       std::to_string(kMaxImageDimension) + ", got " +
+                                       std::to_string(value));
+        }
+        return static_cast<int>(value);
+    }
+
+    std::string read_string(const toml::node& node, const std::string& name) const {
+        const auto* string = node.as_string();
+        if (string == nullptr) fail_type(node, "a string", name);
+        return string->get();
+    }
+
+    void read_output(const toml::table& output, Scene& scene) const {
+        check_keys(output, "output", {"width", "height", "clear_color"});
+        if (const toml::node* n = output.get("width")) scene.width = read_dimension(*n, "output.width");
+        if (const toml::node* n = output.get("height")) scene.height = read_dimension(*n, "output.height");
+        if (const toml::node* n = output.get("clear_color")) {
+            scene.clear_color = read_vec3(*n, "output.clear_color", kUnitInterval);
+        }
+    }
+
+    Camera read_camera(const toml::table& table) const {
+        check_keys(table, "camera", {"position", "target", "up", "fov_y", "near", "far"});
+        Camera camera;
+        camera.position = read_vec3(require(table, "position", "camera"), "camera.position");
+        const toml::node& target = require(table, "target", "camera");
+        camera.target = read_vec3(target, "camera.target");
+        const toml::node* up = table.get("up");
+        if (up != nullptr) camera.up = read_vec3(*up, "camera.up");
+
+        if (const toml::node* fov = table.get("fov_y")) {
+            camera.fov_y_degrees = read_float(*fov, "camera.fov_y");
+            if (!(camera.fov_y_degrees > 0.0f && camera.fov_y_degrees < 180.0f)) {
+                fail_at(fov->source(), "expected 'camera.fov_y' to be in (0, 180) degrees, got " +
+                                           to_text(camera.fov_y_degrees));
+            }
+        }
+        const toml::node* near = table.get("near");
+        if (near != nullptr) {
+            camera.near_plane = read_float(*near, "camera.near");
+            if (!(camera.near_plane > 0.0f)) {
+                fail_at(near->source(),
+                        "expected 'camera.near' to be > 0, got " + to_text(camera.near_plane));
+            }
+        }
+        const toml::node* far = table.get("far");
+        if (far != nullptr) camera.far_plane = read_float(*far, "camera.far");
+        if (!(camera.near_plane < camera.far_plane)) {
+            const toml::node* at = far != nullptr ? far : near;
+            fail_at(at != nullptr ? at->source() : table.source(), "expected 'camera.near' < 'camera.far', got near = " +
+                                      to_text(camera.near_plane) +
+                                      ", far = " + to_text(camera.far_plane));
+        }
+
+        // lookAt needs a view direction and an up vector not parallel to it.
+        const glm::vec3 forward = camera.target - camera.position;
+        const float scale = std::max({1.0f, glm::length(camera.position), glm::length(camera.target)});
+        if (!(glm::length(forward) > 1e-6f * scale)) {
+            fail_at(target.source(), "expected 'camera.target' to differ from 'camera.position'");
+        }
+        const float up_length = glm::length(camera.up);
+        const float sine = up_length > 0.0f
+                               ? glm::length(glm::cross(glm::normalize(forward), camera.up / up_length))
+                               : 0.0f;
+        if (!(sine > 1e-5f)) {
+            fail_at(up != nullptr ? up->source() : table.source(),
+                    "expected 'camera.up' to be non-zero and not parallel to the view direction "
+                    "(target - position)");
+        }
+        return camera;
+    }
+
+    void read_lights(const toml::node& node, Scene& scene) const {
+        const toml::array& lights = array_of_tables(node, "lights");
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const std::string name = "lights[" + std::to_string(i) + "]";
+            const toml::table& table = table_of(*lights.get(i), name);
+            check_keys(table, name, {"type", "position", "color"});
+            if (const toml::node* type = table.get("type")) {
+                const std::string type_text = read_string(*type, child(name, "type"));
+                if (type_text != "point") {
+                    fail_at(type->source(), "unsupported light type '" + type_text + "' for '" +
+                                                child(name, "type") + "'; supported types: " +
+                                                std::string(kSupportedLightTypes));
+                }
+            }
+            PointLight light;
+            light.position = read_vec3(require(table, "position", name), child(name, "position"));
+            light.color = read_vec3(require(table, "color", name), child(name, "color"), kNonNegative);
+            scene.lights.push_back(light);
+        }
+    }
+
+    Material read_material(const toml::table& table, const std::string& name) const {
+        check_keys(table, name, {"albedo", "metallic", "roughness", "ao"});
+        Material material;
+        if (const toml::node* n = table.get("albedo")) {
+            material.albedo = read_vec3(*n, child(name, "albedo"), kUnitInterval);
+        }
+        if (const toml::node* n = table.get("metallic")) {
+            material.metallic = read_float(*n, child(name, "metallic"), kUnitInterval);
+        }
+        if (const toml::node* n = table.get("roughness")) {
+            material.roughness = read_float(*n, child(name, "roughness"), kUnitInterval);
+        }
+        if (const toml::node* n = table.get("ao")) {
+            material.ao = read_float(*n, child(name, "ao"), kUnitInterval);
+        }
+        return material;
+    }
+
+    // All named materials are validated, used or not.
+    void read_named_materials(const toml::node& node) {
+        const toml::table& materials = table_of(node, "materials");
+        for (auto&& [key, value] : materials) {
+            const std::string name = child("materials", key.str());
+            named_materials_.emplace(std::string(key.str()), read_material(table_of(value, name), name));
+        }
+    }
+
+    std::uint32_t material_index(const toml::node* node, const std::string& name, Scene& scene) {
+        const auto add = [&scene](const Material& material) {
+            scene.materials.push_back(material);
+            return static_cast<std::uint32_t>(scene.materials.size() - 1);
+        };
+        if (node == nullptr) {
+            if (!default_material_) default_material_ = add(Material{});
+            return *default_material_;
+        }
+        if (const toml::table* inline_table = node->as_table()) {
+            return add(read_material(*inline_table, name));
+        }
+        if (node->as_string() == nullptr) {
+            fail_type(*node, "a material name or an inline material table", name);
+        }
+        const std::string material_name = read_string(*node, name);
+        if (const auto used = used_materials_.find(material_name); used != used_materials_.end()) {
+            return used->second;
+        }
+        const auto named = named_materials_.find(material_name);
+        if (named == named_materials_.end()) {
+            std::string known;
+            for (const auto& [known_name, material] : named_materials_) {
+                known += (known.empty() ? "" : ", ") + known_name;
+            }
+            fail_at(node->source(), "unknown material '" + material_name + "' for '" + name + "'; " +
+                                        (known.empty() ? "no materials are defined in [materials]"
+                                                       : "defined materials: " + known));
+        }
+        const std::uint32_t index = add(named->second);
+        used_materials_.emplace(material_name, index);
+        return index;
+    }
+
+    std::uint32_t mesh_index(const toml::node& node, const std::string& name, Scene& scene) {
+        const std::string mesh_name = read_string(node, name);
+        if (const auto used = used_meshes_.find(mesh_name); used != used_meshes_.end()) {
+            return used->second;
+        }
+        Mesh mesh;
+        if (mesh_name == "sphere") {
+            mesh = make_sphere_mesh();
+        } else if (mesh_name == "plane") {
+            mesh = make_plane_mesh();
+        } else if (mesh_name == "cube") {
+            mesh = make_cube_mesh();
+        } else {
+            fail_at(node.source(), "unknown mesh '" + mesh_name + "' for '" + name +
+                                       "'; built-in meshes: " + std::string(kSupportedMeshes));
+        }
+        scene.meshes.push_back(std::move(mesh));
+        const auto index = static_cast<std::uint32_t>(scene.meshes.size() - 1);
+        used_meshes_.emplace(mesh_name, index);
+        return index;
+    }
+
+    glm::vec3 read_scale(const toml::node& node, const std::string& name) const {
+        glm::vec3 scale{1.0f};
+        if (node.is_number()) {
+            scale = glm::vec3(read_float(node, name));
+        } else if (node.is_array()) {
+            scale = read_vec3(node, name);
+        } else {
+            fail_type(node, "a number or an array of 3 numbers", name);
+        }
+        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f) {
+            fail_at(node.source(), "expected every component of '" + name + "' to be non-zero");
+        }
+        return scale;
+    }
+
+    void read_objects(const toml::node& node, Scene& scene) {
+        const toml::array& objects = array_of_tables(node, "objects");
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            const std::string name = "objects[" + std::to_string(i) + "]";
+            const toml::table& table = table_of(*objects.get(i), name);
+            check_keys(table, name, {"mesh", "material", "translate", "rotate", "scale"});
+            Object object;
+            object.mesh = mesh_index(require(table, "mesh", name), child(name, "mesh"), scene);
+            object.material = material_index(table.get("material"), child(name, "material"), scene);
+
+            glm::vec3 translate{0.0f};
+            glm::vec3 rotate_degrees{0.0f};
+            glm::vec3 scale{1.0f};
+            if (const toml::node* n = table.get("translate")) translate = read_vec3(*n, child(name, "translate"));
+            if (const toml::node* n = table.get("rotate")) rotate_degrees = read_vec3(*n, child(name, "rotate"));
+            if (const toml::node* n = table.get("scale")) scale = read_scale(*n, child(name, "scale"));
+
+            // translate · Rz · Ry · Rx · scale: X rotation is applied first. Zero
+            // angles are skipped so unrotated objects get exactly the reference's matrix.
+            glm::mat4 model = glm::translate(glm::mat4(1.0f), translate);
+            if (rotate_degrees.z != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.z), {0, 0, 1});
+            if (rotate_degrees.y != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.y), {0, 1, 0});
+            if (rotate_degrees.x != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.x), {1, 0, 0});
+            if (scale != glm::vec3(1.0f)) model = glm::scale(model, scale);
+            object.model = model;
+            scene.objects.push_back(object);
+        }
+    }
+
+    std::string source_;
+    std::map<std::string, Material> named_materials_;
+    std::map<std::string, std::uint32_t> used_materials_;  // name -> index in Scene::materials
+    std::map<std::string, std::uint32_t> used_meshes_;     // name -> index in Scene::meshes
+    std::optional<std::uint32_t> default_material_;
+};
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
+    const std::string source(source_name);
+    toml::table root;
+    try {
+        root = toml::parse(toml_text, source_name);
+    } catch (const toml::parse_error& error) {
+        const toml::source_position where = error.source().begin;
+        throw SceneError(source + ":" + std::to_string(where.line) + ":" +
+                         std::to_string(where.column) + ": " + std::string(error.description()));
+    }
+    return SceneReader(source).read(root);
+}
+
+Scene load_scene_file(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ignored;
+    std::ifstream file(path, std::ios::binary);
+    if (!file || std::filesystem::is_directory(path, ignored)) {
+        throw SceneError(name + ": cannot open scene file");
+    }
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (file.bad()) throw SceneError(name + ": cannot read scene file");
+    return parse_scene(text.str(), name);
+}
+
+}  // namespace tessera

@@ -1,0 +1,71 @@
+// The LearnOpenGL direct-lighting PBR fragment shader, line for line
+// (../shared/reference/pbr_lighting.md). Plain float math, no shortcuts: this is
+// what the SIMD kernels are measured against.
+#include "shade/pbr_reference.hpp"
+
+#include <cmath>
+
+namespace tessera::shade {
+
+float distribution_ggx(const glm::vec3& n, const glm::vec3& h, float roughness) {
+    const float a = roughness * roughness;
+    const float a2 = a * a;
+    const float n_dot_h = glm::max(glm::dot(n, h), 0.0f);
+    const float n_dot_h2 = n_dot_h * n_dot_h;
+    const float denom = (n_dot_h2 * (a2 - 1.0f) + 1.0f);
+    return a2 / (kPi * denom * denom);
+}
+
+float geometry_schlick_ggx(float n_dot_v, float roughness) {
+    const float r = (roughness + 1.0f);
+    const float k = (r * r) / 8.0f;
+    return n_dot_v / (n_dot_v * (1.0f - k) + k);
+}
+
+float geometry_smith(const glm::vec3& n, const glm::vec3& v, const glm::vec3& l, float roughness) {
+    return geometry_schlick_ggx(glm::max(glm::dot(n, l), 0.0f), roughness) *
+           geometry_schlick_ggx(glm::max(glm::dot(n, v), 0.0f), roughness);
+}
+
+glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0) {
+    return f0 + (1.0f - f0) * std::pow(glm::clamp(1.0f - cos_theta, 0.0f, 1.0f), 5.0f);
+}
+
+glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                    const glm::vec3& cam_pos, std::span<const PointLight> lights) {
+    const glm::vec3& albedo = material.albedo;
+    const float metallic = material.metallic;
+    const float roughness = material.roughness;
+
+    const glm::vec3 n = glm::normalize(normal);
+    const glm::vec3 v = glm::normalize(cam_pos - world_pos);
+    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);
+
+    glm::vec3 lo(0.0f);
+    for (const PointLight& light : lights) {
+        const glm::vec3 l = glm::normalize(light.position - world_pos);
+        const glm::vec3 h = glm::normalize(v + l);
+        const float distance = glm::length(light.position - world_pos);
+        const glm::vec3 radiance = light.color / (distance * distance);
+
+        const float ndf = distribution_ggx(n, h, roughness);
+        const float g = geometry_smith(n, v, l, roughness);
+        const glm::vec3 f = fresnel_schlick(glm::max(glm::dot(h, v), 0.0f), f0);
+
+        const glm::vec3 k_d = (glm::vec3(1.0f) - f) * (1.0f - metallic);
+        const glm::vec3 specular =
+            ndf * g * f / (4.0f * glm::max(glm::dot(n, v), 0.0f) * glm::max(glm::dot(n, l), 0.0f) + 0.0001f);
+        const float n_dot_l = glm::max(glm::dot(n, l), 0.0f);
+        lo += (k_d * albedo / kPi + specular) * radiance * n_dot_l;
+    }
+    return glm::vec3(0.03f) * albedo * material.ao + lo;
+}
+
+glm::vec3 tonemap_reinhard(const glm::vec3& hdr) { return hdr / (hdr + glm::vec3(1.0f)); }
+
+glm::vec3 gamma_encode(const glm::vec3& linear) {
+    const float inv_gamma = 1.0f / 2.2f;
+    return {std::pow(linear.r, inv_gamma), std::pow(linear.g, inv_gamma), std::pow(linear.b, inv_gamma)};
+}
+
+}  // namespace tessera::shade

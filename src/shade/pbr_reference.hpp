@@ -1,0 +1,34 @@
+// The reference fragment shader in plain scalar C++: the LearnOpenGL direct
+// lighting PBR shader of ../shared/reference/pbr_lighting.md, term for term and
+// with the same names, so it can be checked by eye against the GLSL. The SIMD
+// kernels (shade_kernels.hpp) are tested against it.
+#pragma once
+
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "tessera/scene.hpp"
+
+namespace tessera::shade {
+
+inline constexpr float kPi = 3.14159265359f;  // the GLSL's PI
+
+// GGX / Trowbridge-Reitz normal distribution; alpha = roughness².
+float distribution_ggx(const glm::vec3& n, const glm::vec3& h, float roughness);
+// Schlick-GGX with k = (roughness + 1)² / 8 (direct lighting).
+float geometry_schlick_ggx(float n_dot_v, float roughness);
+float geometry_smith(const glm::vec3& n, const glm::vec3& v, const glm::vec3& l, float roughness);
+glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0);
+
+// Scene-linear HDR radiance leaving world_pos towards cam_pos (the GLSL's `color`
+// before tonemapping). normal need not be unit length: it is normalized here, as the GLSL does.
+glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                    const glm::vec3& cam_pos, std::span<const PointLight> lights);
+
+// Reinhard c / (c + 1), then gamma c^(1/2.2): display-referred, in [0, 1].
+glm::vec3 tonemap_reinhard(const glm::vec3& hdr);
+glm::vec3 gamma_encode(const glm::vec3& linear);
+inline glm::vec3 display_from_radiance(const glm::vec3& hdr) { return gamma_encode(tonemap_reinhard(hdr)); }
+
+}  // namespace tessera::shade

@@ -1,0 +1,30 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+
+#include "golden_compare.hpp"
+#include "tessera/renderer.hpp"
+#include "test_paths.hpp"
+
+using namespace tessera;
+
+// Every scene in scenes/ has a golden image golden/<scene>.png made by
+// tools/regenerate_golden.sh; a render that drifts from it fails here.
+TEST_CASE("every scene matches its golden image") {
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() / "scenes"))
+        if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+    std::sort(scenes.begin(), scenes.end());
+    REQUIRE_FALSE(scenes.empty());
+    Renderer renderer;
+    for (const auto& scene_file : scenes) {
+        const std::string name = scene_file.stem().string();
+        SUBCASE(name.c_str()) {
+            const RenderedImage& image = renderer.render(load_scene_file(scene_file));
+            const auto result = test::compare_with_golden(image, test::source_dir() / "golden" / (name + ".png"),
+                                                          std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures", name);
+            CHECK_MESSAGE(result.passed, name << ": " << result.message);
+            MESSAGE(name << ": " << result.message);
+        }
+    }
+}

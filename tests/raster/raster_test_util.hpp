@@ -1,0 +1,41 @@
+// Building raster-stage triangles straight from screen positions.
+#pragma once
+
+#include <vector>
+
+#include "raster/tile_rasterizer.hpp"
+#include "raster/triangle_setup.hpp"
+
+namespace tessera::test {
+
+// The clip position that the viewport maps onto image point (x, y) (y down)
+// at window depth `depth`, with clip w = `w`.
+inline glm::vec4 clip_for_screen(float x, float y, float depth, float w, int width, int height) {
+    const float ndc_x = x / float(width) * 2.0f - 1.0f;
+    const float ndc_y = 1.0f - y / float(height) * 2.0f;
+    const float ndc_z = depth * 2.0f - 1.0f;
+    return {ndc_x * w, ndc_y * w, ndc_z * w, w};
+}
+
+inline std::optional<raster::RasterTriangle> screen_triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, int size,
+                                                             float depth = 0.5f) {
+    return raster::setup_triangle({size, size},
+                                  {clip_for_screen(a.x, a.y, depth, 1, size, size),
+                                   clip_for_screen(b.x, b.y, depth, 1, size, size),
+                                   clip_for_screen(c.x, c.y, depth, 1, size, size)},
+                                  {0, 1, 2}, 0);
+}
+
+// 1 for each pixel of a size×size image whose centre the triangle covers.
+inline std::vector<int> coverage(const std::optional<raster::RasterTriangle>& t, int size) {
+    std::vector<int> covered(std::size_t(size) * size, 0);
+    if (!t) return covered;
+    raster::TileBuffers buffers;
+    buffers.reset(size);
+    raster::RasterCounters counters;
+    raster::rasterize_triangle(*t, 0, {0, 0, size, size}, buffers, counters);
+    for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = buffers.triangle[i] != raster::kNoTriangle;
+    return covered;
+}
+
+}  // namespace tessera::test

@@ -1,0 +1,58 @@
+#include <doctest/doctest.h>
+
+#include <optional>
+
+#include "tessera/renderer.hpp"
+#include "test_paths.hpp"
+
+using namespace tessera;
+
+TEST_CASE("the spheres scene renders bit-identically with 1, 2 and 8 threads and on every run") {
+    const Scene scene = load_scene_file(test::scene_path("spheres.toml"));
+    Renderer one({.threads = 1});
+    const RenderedImage reference = one.render(scene);  // a copy: render() reuses its image
+    CHECK(one.render(scene).display == reference.display);  // a second frame from reused memory
+    for (int threads : {2, 8}) {
+        CAPTURE(threads);
+        Renderer renderer({.threads = threads});
+        const RenderedImage& image = renderer.render(scene);
+        CHECK(image.display == reference.display);
+        CHECK(image.radiance == reference.radiance);
+    }
+}
+
+TEST_CASE("the tile size changes the schedule, not the picture") {
+    const Scene scene = load_scene_file(test::scene_path("spheres.toml"));
+    Renderer small({.threads = 2, .tile_size = 16});
+    const RenderedImage reference = small.render(scene);
+    Renderer large({.threads = 2, .tile_size = 64});
+    CHECK(large.render(scene).radiance == reference.radiance);
+}
+
+TEST_CASE("every shading ISA renders the spheres scene within 1/255 of the scalar reference path") {
+    const Scene scene = load_scene_file(test::scene_path("spheres.toml"));
+    Renderer scalar({.isa = "scalar"});
+    const RenderedImage reference = scalar.render(scene);
+    for (const char* isa : {"sse4", "avx2", "avx512"}) {
+        CAPTURE(isa);
+        std::optional<Renderer> renderer;
+        try {
+            renderer.emplace(RenderSettings{.isa = isa});
+        } catch (const std::invalid_argument& e) {
+            MESSAGE("skipped: " << e.what());
+            continue;
+        }
+        const RenderedImage& image = renderer->render(scene);
+        int worst = 0;
+        for (std::size_t i = 0; i < image.display.size(); ++i)
+            worst = std::max(worst, std::abs(int(image.display[i]) - int(reference.display[i])));
+        CHECK(worst <= 1);
+    }
+}
+
+TEST_CASE("renderer settings are validated") {
+    CHECK_THROWS_AS(Renderer({.tile_size = 48}), std::invalid_argument);
+    CHECK_THROWS_AS(Renderer({.tile_size = 4}), std::invalid_argument);
+    CHECK_THROWS_AS(Renderer({.threads = -1}), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(Renderer({.isa = "neon"}), doctest::Contains("unknown ISA"), std::invalid_argument);
+}

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs, from Debian 12's packages, whatever Tessera needs that is missing.
+# Run as root (or with sudo available). Installs nothing when all is present.
+set -euo pipefail
+packages=(
+  g++ make cmake pkg-config
+  libglm-dev libtbb-dev libopenimageio-dev openimageio-tools libxsimd-dev
+  doctest-dev libtomlplusplus-dev libcli11-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "Installing: ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+# --no-install-recommends: with recommends OpenImageIO pulls in PostgreSQL, GTK and Qt.
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Quick start, command 1: install what is missing, build in Release, and render
+# the demo scene to spheres.png in the repository's top folder.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+bash "$root/tools/install_dependencies.sh"
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$root/build" --target tessera -j"$(nproc)"
+"$root/build/tessera" render "$root/scenes/spheres.toml" -o "$root/spheres.png" --stats
+echo "wrote $root/spheres.png"
