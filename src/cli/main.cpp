@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/bench_command.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
@@ -71,6 +72,21 @@ int main(int argc, char** argv) {
     render_app->add_option("--isa", render.settings.isa, "Shading kernels: auto, scalar, sse4, avx2, avx512");
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
 
+    tessera::cli::BenchCommand bench;
+    CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");
+    bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
+    bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
+    bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
+    bench_app->add_option("--width", bench.width, "Override the scene's image width")
+        ->check(CLI::Range(1, tessera::kMaxImageDimension));
+    bench_app->add_option("--height", bench.height, "Override the scene's image height")
+        ->check(CLI::Range(1, tessera::kMaxImageDimension));
+    bench_app->add_option("--threads", bench.settings.threads, "Worker threads (0 = one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
+    bench_app->add_option("--tile-size", bench.settings.tile_size, "Screen tile side in pixels");
+    bench_app->add_option("--isa", bench.settings.isa, "Shading kernels: auto, scalar, sse4, avx2, avx512");
+    bench_app->add_flag("--json", bench.json, "Print one JSON object");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -78,6 +94,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*render_app) return run_render(render);
+        if (*bench_app) return tessera::cli::run_bench(bench);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 1;

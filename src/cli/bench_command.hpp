@@ -1,0 +1,23 @@
+// tessera bench: renders one scene many times in one process and reports
+// where a frame's time goes.
+#pragma once
+
+#include <string>
+
+#include "tessera/renderer.hpp"
+
+namespace tessera::cli {
+
+struct BenchCommand {
+    std::string scene_path;
+    int frames = 30;
+    int warmup = 3;
+    int width = 0;  // 0: the scene's own
+    int height = 0;
+    bool json = false;
+    RenderSettings settings;
+};
+
+int run_bench(const BenchCommand& cmd);
+
+}  // namespace tessera::cli
