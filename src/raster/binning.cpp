@@ -1,6 +1,7 @@
 #include "raster/binning.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace tessera::raster {
 
@@ -8,6 +9,7 @@ TileGrid::TileGrid(int image_width, int image_height, int tile_side)
     : width(image_width),
       height(image_height),
       tile_size(tile_side),
+      tile_shift(std::countr_zero(unsigned(tile_side))),
       tiles_x((image_width + tile_side - 1) / tile_side),
       tiles_y((image_height + tile_side - 1) / tile_side) {}
 
@@ -21,8 +23,8 @@ namespace {
 // Calls f(tile) for each tile that the triangle's pixel box overlaps.
 template <class F>
 void for_each_tile(const TileGrid& grid, const RasterTriangle& t, F&& f) {
-    const int tx0 = t.px_min / grid.tile_size, tx1 = t.px_max / grid.tile_size;
-    const int ty0 = t.py_min / grid.tile_size, ty1 = t.py_max / grid.tile_size;
+    const int tx0 = t.px_min >> grid.tile_shift, tx1 = t.px_max >> grid.tile_shift;
+    const int ty0 = t.py_min >> grid.tile_shift, ty1 = t.py_max >> grid.tile_shift;
     for (int ty = ty0; ty <= ty1; ++ty)
         for (int tx = tx0; tx <= tx1; ++tx) f(ty * grid.tiles_x + tx);
 }

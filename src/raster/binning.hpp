@@ -17,6 +17,7 @@ namespace tessera::raster {
 struct TileGrid {
     int width = 0, height = 0;
     int tile_size = 0;
+    int tile_shift = 0;  // log2(tile_size)
     int tiles_x = 0, tiles_y = 0;
     TileGrid() = default;
     TileGrid(int image_width, int image_height, int tile_side);

@@ -4,13 +4,13 @@
 #include <cstdint>
 
 #include "geometry/clipper.hpp"
+#include "geometry/viewport.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::raster {
 
-// Screen positions are snapped to 1/256 pixel (24.8 fixed point).
-inline constexpr int kSubpixelBits = 8;
-inline constexpr std::int32_t kSubpixelScale = 1 << kSubpixelBits;
+using geometry::kSubpixelBits;  // the viewport transform snaps to 24.8 fixed point
+using geometry::kSubpixelScale;
 
 // After guard-band clipping |x|, |y| <= kMaxImageDimension + kGuardBandPixels
 // = 32768 px = 2^23 in fixed point, so an edge function (a difference of two

@@ -1,7 +1,6 @@
 #include "raster/triangle_setup.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "raster/raster_limits.hpp"
 
@@ -25,20 +24,15 @@ std::int32_t last_centre_at_or_before(std::int32_t v) {
 
 }  // namespace
 
-std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
+std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
                                              const std::array<std::uint32_t, 3>& vertex, std::uint32_t material) {
     RasterTriangle t;
     t.material = material;
     for (int i = 0; i < 3; ++i) {
-        const glm::vec4& p = clip_pos[i];
-        const float inv_w = 1.0f / p.w;
-        // OpenGL viewport transform, then y flipped so row 0 is the top.
-        const float x = (p.x * inv_w * 0.5f + 0.5f) * float(viewport.width);
-        const float y = (0.5f - p.y * inv_w * 0.5f) * float(viewport.height);
-        t.x[i] = static_cast<std::int32_t>(std::lrint(x * float(kSubpixelScale)));
-        t.y[i] = static_cast<std::int32_t>(std::lrint(y * float(kSubpixelScale)));
-        t.depth[i] = p.z * inv_w * 0.5f + 0.5f;
-        t.inv_w[i] = inv_w;
+        t.x[i] = corners[i].x;
+        t.y[i] = corners[i].y;
+        t.depth[i] = corners[i].depth;
+        t.inv_w[i] = corners[i].inv_w;
         t.vertex[i] = vertex[i];
     }
     t.double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
@@ -60,6 +54,14 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
     // Most triangles of a finely tessellated mesh fall between pixel centres.
     if (t.px_min > t.px_max || t.py_min > t.py_max) return std::nullopt;
     return t;
+}
+
+std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
+                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material) {
+    return setup_triangle(viewport,
+                          {geometry::to_screen(clip_pos[0], viewport), geometry::to_screen(clip_pos[1], viewport),
+                           geometry::to_screen(clip_pos[2], viewport)},
+                          vertex, material);
 }
 
 }  // namespace tessera::raster

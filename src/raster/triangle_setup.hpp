@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <optional>
 
-#include <glm/glm.hpp>
+#include "geometry/viewport.hpp"
 
 namespace tessera::raster {
 
@@ -22,14 +22,15 @@ struct RasterTriangle {
     std::int32_t px_min = 0, px_max = 0, py_min = 0, py_max = 0;  // inclusive pixel box, clamped to the image
 };
 
-struct Viewport {
-    int width = 0;
-    int height = 0;
-};
+using geometry::ScreenVertex;
+using geometry::Viewport;
 
-// Maps clip positions to a RasterTriangle, or nothing when the triangle has
-// no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
+// Makes a RasterTriangle of three screen vertices, or nothing when the
+// triangle has no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
+std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
+                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material);
+// The same from clip positions (each inside the near plane and the guard band).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
                                              const std::array<std::uint32_t, 3>& vertex, std::uint32_t material);
 

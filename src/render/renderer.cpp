@@ -43,7 +43,7 @@ struct TileScratch {
     raster::TileBuffers raster;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
-    std::vector<std::uint32_t> pixel;  // index within the tile of each visible pixel
+    std::vector<std::uint32_t> pixel;  // image pixel index (y · width + x) of each visible pixel
     // world xyz, normal xyz, albedo rgb, metallic, roughness, ao, radiance rgb
     enum Channel { wx, wy, wz, nx, ny, nz, ar, ag, ab, metal, rough, occl, out_r, out_g, out_b, kChannels };
     std::vector<float> channels[kChannels];
@@ -67,6 +67,7 @@ struct Renderer::Frame {
 
     std::vector<geometry::ShadedVertex> vertices;  // every object's vertices, object after object
     std::vector<std::uint32_t> outcodes;           // one per vertex
+    std::vector<geometry::ScreenVertex> screen;    // one per vertex; set where the outcode has no clip bit
     std::vector<std::uint32_t> first_vertex;       // per object, into `vertices`
     std::vector<render::Chunk> chunks;
     std::size_t chunk_count = 0;
@@ -141,13 +142,19 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene, const glm::mat4& view
     if (total >= geometry::kClippedVertexBit) throw std::invalid_argument("the scene has too many vertices");
     vertices.resize(total);
     outcodes.resize(total);
+    screen.resize(total);
     const geometry::GuardBand guard(scene.width, scene.height);
+    const geometry::Viewport viewport{scene.width, scene.height};
     tbb::parallel_for(std::size_t(0), scene.objects.size(), [&](std::size_t o) {
         const Object& object = scene.objects[o];
         const Mesh& mesh = scene.meshes[object.mesh];
         const std::span<geometry::ShadedVertex> out(vertices.data() + first_vertex[o], mesh.positions.size());
         geometry::shade_vertices(mesh, object.model, view_projection, out);
-        for (std::size_t i = 0; i < out.size(); ++i) outcodes[first_vertex[o] + i] = geometry::outcode(out[i].clip_pos, guard);
+        for (std::size_t i = 0, v = first_vertex[o]; i < out.size(); ++i, ++v) {
+            outcodes[v] = geometry::outcode(out[i].clip_pos, guard);
+            // The viewport transform, once per vertex rather than once per triangle corner.
+            if (!(outcodes[v] & geometry::kClipPlaneBits)) screen[v] = geometry::to_screen(out[i].clip_pos, viewport);
+        }
     });
 }
 
@@ -166,12 +173,13 @@ void Renderer::Frame::setup_and_bin(const Scene& scene) {
         }
     }
     grid = raster::TileGrid(scene.width, scene.height, settings.tile_size);
-    const raster::Viewport viewport{scene.width, scene.height};
+    const geometry::Viewport viewport{scene.width, scene.height};
     const geometry::GuardBand guard(scene.width, scene.height);
 
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         render::Chunk& chunk = chunks[c];
         chunk.triangles.clear();
+        chunk.triangles.reserve(chunk.triangle_count);  // most triangles stay one triangle
         chunk.clipped_vertices.clear();
         const Object& object = scene.objects[chunk.object];
         const std::uint32_t* indices = scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle);
@@ -183,9 +191,8 @@ void Renderer::Frame::setup_and_bin(const Scene& scene) {
             const geometry::ClipResult kind = geometry::classify_triangle(oc0, oc1, oc2);
             if (kind == geometry::ClipResult::rejected) continue;
             if (kind == geometry::ClipResult::accepted) {
-                const auto set_up = raster::setup_triangle(
-                    viewport, {vertices[ref[0]].clip_pos, vertices[ref[1]].clip_pos, vertices[ref[2]].clip_pos}, ref,
-                    object.material);
+                const auto set_up =
+                    raster::setup_triangle(viewport, {screen[ref[0]], screen[ref[1]], screen[ref[2]]}, ref, object.material);
                 if (set_up) chunk.triangles.push_back(*set_up);
                 continue;
             }
@@ -250,20 +257,21 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     auto& ch = s.channels;
     std::size_t count = 0;
     for (int y = 0; y < rect.height(); ++y) {
+        const std::size_t row = std::size_t(y) * s.raster.side;
+        const std::size_t image_row = std::size_t(rect.y0 + y) * image.width + rect.x0;
         for (int x = 0; x < rect.width(); ++x) {
-            const std::size_t p = std::size_t(y) * s.raster.side + x;
-            const std::uint32_t id = s.raster.triangle[p];
+            const std::uint32_t id = s.raster.triangle[row + x];
             if (id == raster::kNoTriangle) continue;
             const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
             const raster::RasterTriangle& t = chunk.triangles[id & ((1u << render::kChunkIdShift) - 1)];
-            const auto [b1, b2] = raster::perspective_barycentrics(t, s.raster.lambda1[p], s.raster.lambda2[p]);
+            const auto [b1, b2] = raster::perspective_barycentrics(t, s.raster.lambda1[row + x], s.raster.lambda2[row + x]);
             const geometry::ShadedVertex& v0 = vertex(chunk, t.vertex[0]);
             const geometry::ShadedVertex& v1 = vertex(chunk, t.vertex[1]);
             const geometry::ShadedVertex& v2 = vertex(chunk, t.vertex[2]);
             const glm::vec3 world = v0.world_pos + b1 * (v1.world_pos - v0.world_pos) + b2 * (v2.world_pos - v0.world_pos);
             const glm::vec3 normal = v0.normal + b1 * (v1.normal - v0.normal) + b2 * (v2.normal - v0.normal);
             const Material& m = scene.materials[t.material];
-            s.pixel[count] = std::uint32_t(p);
+            s.pixel[count] = std::uint32_t(image_row + x);
             ch[TileScratch::wx][count] = world.x, ch[TileScratch::wy][count] = world.y, ch[TileScratch::wz][count] = world.z;
             ch[TileScratch::nx][count] = normal.x, ch[TileScratch::ny][count] = normal.y, ch[TileScratch::nz][count] = normal.z;
             ch[TileScratch::ar][count] = m.albedo.r, ch[TileScratch::ag][count] = m.albedo.g, ch[TileScratch::ab][count] = m.albedo.b;
@@ -291,22 +299,18 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     const std::uint8_t clear_display[3] = {image::quantize_unorm8(scene.clear_color.r),
                                            image::quantize_unorm8(scene.clear_color.g),
                                            image::quantize_unorm8(scene.clear_color.b)};
-    auto image_index = [&](std::size_t p) {
-        const std::size_t y = rect.y0 + p / s.raster.side, x = rect.x0 + p % s.raster.side;
-        return 3 * (y * std::size_t(image.width) + x);
-    };
-    for (int y = 0; y < rect.height(); ++y)
-        for (int x = 0; x < rect.width(); ++x) {
-            const std::size_t i = image_index(std::size_t(y) * s.raster.side + x);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        const std::size_t first = 3 * (std::size_t(y) * image.width + rect.x0);
+        for (std::size_t i = first; i < first + 3 * std::size_t(rect.width()); i += 3)
             for (int c = 0; c < 3; ++c) image.radiance[i + c] = clear_radiance[c], image.display[i + c] = clear_display[c];
-        }
+    }
     for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t i = image_index(s.pixel[k]);
+        const std::size_t i = 3 * std::size_t(s.pixel[k]);
         image.radiance[i] = out.r[k], image.radiance[i + 1] = out.g[k], image.radiance[i + 2] = out.b[k];
     }
     if (count > 0) shade::tonemap_gamma(isa, count, out.r, out.g, out.b);
     for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t i = image_index(s.pixel[k]);
+        const std::size_t i = 3 * std::size_t(s.pixel[k]);
         image.display[i] = image::quantize_unorm8(out.r[k]);
         image.display[i + 1] = image::quantize_unorm8(out.g[k]);
         image.display[i + 2] = image::quantize_unorm8(out.b[k]);
