@@ -14,10 +14,10 @@ namespace tessera::render {
 
 // The scene's triangles are cut into chunks of at most this many, each set up
 // and binned on its own; chunk boundaries depend on the scene only.
-inline constexpr std::uint32_t kChunkTriangles = 4096;
+inline constexpr std::uint32_t kChunkTriangles = 16384;
 // A triangle id is (chunk << kChunkIdShift) | index in the chunk. Clipping
-// turns one triangle into at most 7, so a chunk holds fewer than 2^15.
-inline constexpr int kChunkIdShift = 15;
+// turns one triangle into at most 7, so a chunk holds fewer than 2^17.
+inline constexpr int kChunkIdShift = 17;
 inline constexpr std::uint32_t kMaxChunks = (raster::kNoTriangle >> kChunkIdShift);  // leaves kNoTriangle unused
 static_assert(kChunkTriangles * 7 < (1u << kChunkIdShift));
 

@@ -7,7 +7,11 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <optional>
+
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -43,7 +47,6 @@ struct TileScratch {
     raster::TileBuffers raster;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
-    std::vector<std::uint32_t> pixel;  // image pixel index (y · width + x) of each visible pixel
     // world xyz, normal xyz, albedo rgb, metallic, roughness, ao, radiance rgb
     enum Channel { wx, wy, wz, nx, ny, nz, ar, ag, ab, metal, rough, occl, out_r, out_g, out_b, kChannels };
     std::vector<float> channels[kChannels];
@@ -51,7 +54,6 @@ struct TileScratch {
     void reserve(int tile_side) {
         raster.reset(tile_side);
         const std::size_t n = shade::padded_count(std::size_t(tile_side) * tile_side);
-        pixel.resize(n);
         for (auto& c : channels) c.resize(n);
     }
 };
@@ -61,6 +63,9 @@ struct TileScratch {
 struct Renderer::Frame {
     RenderSettings settings;
     shade::Isa isa;
+    // oneTBB runs no more workers than cores unless told: asking for more
+    // threads than that must really give more (the determinism tests do).
+    std::optional<tbb::global_control> allow_oversubscription;
     tbb::task_arena arena;
     FrameStats stats;
     RenderedImage image;
@@ -76,9 +81,10 @@ struct Renderer::Frame {
     tbb::enumerable_thread_specific<TileScratch> scratch;
 
     explicit Frame(const RenderSettings& s)
-        : settings(s),
-          isa(parse_isa(s.isa)),
-          arena(s.threads > 0 ? s.threads : tbb::this_task_arena::max_concurrency()) {}
+        : settings(s), isa(parse_isa(s.isa)), arena(s.threads > 0 ? s.threads : tbb::info::default_concurrency()) {
+        if (s.threads > tbb::info::default_concurrency())
+            allow_oversubscription.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(s.threads));
+    }
 
     void run_vertex_stage(const Scene& scene, const glm::mat4& view_projection);
     void setup_and_bin(const Scene& scene);
@@ -253,30 +259,38 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
         }
     }
 
-    // Gather the visible pixels' surface points.
+    // Gather the visible pixels' surface points, row by row. Neighbouring
+    // pixels mostly show the same triangle, so its corners are fetched once per run.
     auto& ch = s.channels;
     std::size_t count = 0;
+    std::uint32_t cached_id = raster::kNoTriangle;
+    const raster::RasterTriangle* t = nullptr;
+    const Material* m = nullptr;
+    glm::vec3 world0{}, world_d1{}, world_d2{}, normal0{}, normal_d1{}, normal_d2{};
     for (int y = 0; y < rect.height(); ++y) {
         const std::size_t row = std::size_t(y) * s.raster.side;
-        const std::size_t image_row = std::size_t(rect.y0 + y) * image.width + rect.x0;
         for (int x = 0; x < rect.width(); ++x) {
             const std::uint32_t id = s.raster.triangle[row + x];
             if (id == raster::kNoTriangle) continue;
-            const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
-            const raster::RasterTriangle& t = chunk.triangles[id & ((1u << render::kChunkIdShift) - 1)];
-            const auto [b1, b2] = raster::perspective_barycentrics(t, s.raster.lambda1[row + x], s.raster.lambda2[row + x]);
-            const geometry::ShadedVertex& v0 = vertex(chunk, t.vertex[0]);
-            const geometry::ShadedVertex& v1 = vertex(chunk, t.vertex[1]);
-            const geometry::ShadedVertex& v2 = vertex(chunk, t.vertex[2]);
-            const glm::vec3 world = v0.world_pos + b1 * (v1.world_pos - v0.world_pos) + b2 * (v2.world_pos - v0.world_pos);
-            const glm::vec3 normal = v0.normal + b1 * (v1.normal - v0.normal) + b2 * (v2.normal - v0.normal);
-            const Material& m = scene.materials[t.material];
-            s.pixel[count] = std::uint32_t(image_row + x);
+            if (id != cached_id) {
+                cached_id = id;
+                const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
+                t = &chunk.triangles[id & ((1u << render::kChunkIdShift) - 1)];
+                m = &scene.materials[t->material];
+                const geometry::ShadedVertex& v0 = vertex(chunk, t->vertex[0]);
+                const geometry::ShadedVertex& v1 = vertex(chunk, t->vertex[1]);
+                const geometry::ShadedVertex& v2 = vertex(chunk, t->vertex[2]);
+                world0 = v0.world_pos, world_d1 = v1.world_pos - v0.world_pos, world_d2 = v2.world_pos - v0.world_pos;
+                normal0 = v0.normal, normal_d1 = v1.normal - v0.normal, normal_d2 = v2.normal - v0.normal;
+            }
+            const auto [b1, b2] = raster::perspective_barycentrics(*t, s.raster.lambda1[row + x], s.raster.lambda2[row + x]);
+            const glm::vec3 world = world0 + b1 * world_d1 + b2 * world_d2;
+            const glm::vec3 normal = normal0 + b1 * normal_d1 + b2 * normal_d2;
             ch[TileScratch::wx][count] = world.x, ch[TileScratch::wy][count] = world.y, ch[TileScratch::wz][count] = world.z;
             ch[TileScratch::nx][count] = normal.x, ch[TileScratch::ny][count] = normal.y, ch[TileScratch::nz][count] = normal.z;
-            ch[TileScratch::ar][count] = m.albedo.r, ch[TileScratch::ag][count] = m.albedo.g, ch[TileScratch::ab][count] = m.albedo.b;
-            ch[TileScratch::metal][count] = m.metallic, ch[TileScratch::rough][count] = m.roughness;
-            ch[TileScratch::occl][count] = m.ao;
+            ch[TileScratch::ar][count] = m->albedo.r, ch[TileScratch::ag][count] = m->albedo.g, ch[TileScratch::ab][count] = m->albedo.b;
+            ch[TileScratch::metal][count] = m->metallic, ch[TileScratch::rough][count] = m->roughness;
+            ch[TileScratch::occl][count] = m->ao;
             ++count;
         }
     }
@@ -294,27 +308,41 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
                                      ch[TileScratch::out_b].data()};
     if (count > 0) shade::shade_fragments(isa, in, lights, out);
 
-    // Resolve: background first, then the shaded pixels' radiance and display values.
+    // Resolve: every pixel of the tile written once, shaded pixels in the order
+    // they were gathered, the rest with the clear colour. Radiance first, since
+    // the tonemap works in place.
     const glm::vec3 clear_radiance = image::radiance_for_display(scene.clear_color);
     const std::uint8_t clear_display[3] = {image::quantize_unorm8(scene.clear_color.r),
                                            image::quantize_unorm8(scene.clear_color.g),
                                            image::quantize_unorm8(scene.clear_color.b)};
-    for (int y = rect.y0; y < rect.y1; ++y) {
-        const std::size_t first = 3 * (std::size_t(y) * image.width + rect.x0);
-        for (std::size_t i = first; i < first + 3 * std::size_t(rect.width()); i += 3)
-            for (int c = 0; c < 3; ++c) image.radiance[i + c] = clear_radiance[c], image.display[i + c] = clear_display[c];
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t i = 3 * std::size_t(s.pixel[k]);
-        image.radiance[i] = out.r[k], image.radiance[i + 1] = out.g[k], image.radiance[i + 2] = out.b[k];
-    }
+    auto for_each_pixel = [&](auto&& write) {
+        std::size_t k = 0;
+        for (int y = 0; y < rect.height(); ++y) {
+            const std::uint32_t* ids = &s.raster.triangle[std::size_t(y) * s.raster.side];
+            const std::size_t first = 3 * (std::size_t(rect.y0 + y) * image.width + rect.x0);
+            for (int x = 0; x < rect.width(); ++x) {
+                const bool shaded = ids[x] != raster::kNoTriangle;
+                write(first + 3 * std::size_t(x), shaded, k);
+                k += shaded;
+            }
+        }
+    };
+    for_each_pixel([&](std::size_t i, bool shaded, std::size_t k) {
+        float* radiance = &image.radiance[i];
+        if (shaded) radiance[0] = out.r[k], radiance[1] = out.g[k], radiance[2] = out.b[k];
+        else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
+    });
     if (count > 0) shade::tonemap_gamma(isa, count, out.r, out.g, out.b);
-    for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t i = 3 * std::size_t(s.pixel[k]);
-        image.display[i] = image::quantize_unorm8(out.r[k]);
-        image.display[i + 1] = image::quantize_unorm8(out.g[k]);
-        image.display[i + 2] = image::quantize_unorm8(out.b[k]);
-    }
+    for_each_pixel([&](std::size_t i, bool shaded, std::size_t k) {
+        std::uint8_t* display = &image.display[i];
+        if (shaded) {
+            display[0] = image::quantize_unorm8(out.r[k]);
+            display[1] = image::quantize_unorm8(out.g[k]);
+            display[2] = image::quantize_unorm8(out.b[k]);
+        } else {
+            display[0] = clear_display[0], display[1] = clear_display[1], display[2] = clear_display[2];
+        }
+    });
     s.fragments_shaded += count;
 }
 
