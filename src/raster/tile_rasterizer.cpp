@@ -10,7 +10,7 @@ void TileBuffers::reset(int tile_side) {
     const std::size_t n = std::size_t(tile_side) * std::size_t(tile_side);
     side = tile_side;
     depth.assign(n, 1.0f);
-    triangle.assign(n, kNoTriangle);
+    triangle.resize(n);
     lambda1.resize(n);
     lambda2.resize(n);
 }

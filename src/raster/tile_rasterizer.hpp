@@ -12,6 +12,7 @@
 
 namespace tessera::raster {
 
+// A triangle id no triangle has.
 inline constexpr std::uint32_t kNoTriangle = ~std::uint32_t{0};
 
 // A rectangle of pixels, [x0, x1) × [y0, y1).
@@ -26,9 +27,12 @@ struct TileRect {
 struct TileBuffers {
     int side = 0;
     std::vector<float> depth;               // window depth of the nearest fragment, 1 = cleared
-    std::vector<std::uint32_t> triangle;    // its triangle id, kNoTriangle where none
-    std::vector<float> lambda1, lambda2;    // its screen-space barycentrics of corners 1 and 2
-    void reset(int tile_side);              // clears depth to 1 and triangle to kNoTriangle
+    std::vector<std::uint32_t> triangle;    // its triangle id, where covered
+    std::vector<float> lambda1, lambda2;    // its screen-space barycentrics of corners 1 and 2, where covered
+    // A fragment passes LESS only with depth < 1, the cleared value, so depth
+    // alone says whether a pixel is covered and the other arrays need no clearing.
+    bool covered(std::size_t pixel) const { return depth[pixel] < 1.0f; }
+    void reset(int tile_side);              // clears depth to 1
 };
 
 // Counts of work done, summed over tiles.

@@ -270,8 +270,8 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     for (int y = 0; y < rect.height(); ++y) {
         const std::size_t row = std::size_t(y) * s.raster.side;
         for (int x = 0; x < rect.width(); ++x) {
+            if (!s.raster.covered(row + x)) continue;
             const std::uint32_t id = s.raster.triangle[row + x];
-            if (id == raster::kNoTriangle) continue;
             if (id != cached_id) {
                 cached_id = id;
                 const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
@@ -318,10 +318,10 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     auto for_each_pixel = [&](auto&& write) {
         std::size_t k = 0;
         for (int y = 0; y < rect.height(); ++y) {
-            const std::uint32_t* ids = &s.raster.triangle[std::size_t(y) * s.raster.side];
+            const float* depth = &s.raster.depth[std::size_t(y) * s.raster.side];
             const std::size_t first = 3 * (std::size_t(rect.y0 + y) * image.width + rect.x0);
             for (int x = 0; x < rect.width(); ++x) {
-                const bool shaded = ids[x] != raster::kNoTriangle;
+                const bool shaded = depth[x] < 1.0f;  // TileBuffers::covered
                 write(first + 3 * std::size_t(x), shaded, k);
                 k += shaded;
             }

@@ -4,8 +4,6 @@
 #include <string>
 #include <vector>
 
-#include <xsimd/xsimd.hpp>
-
 #include "shade/pbr_reference.hpp"
 #include "shade/shade_kernels.hpp"
 
@@ -39,47 +37,7 @@ void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Poi
     }
 }
 
-std::string_view isa_name(Isa isa) {
-    switch (isa) {
-        case Isa::scalar: return "scalar";
-        case Isa::sse4: return "sse4";
-        case Isa::avx2: return "avx2";
-        case Isa::avx512: return "avx512";
-    }
-    return "unknown";
-}
-
 namespace {
-
-struct IsaSupport {
-    bool sse4 = false, avx2 = false, avx512 = false;
-};
-
-// Each kernel copy is built with -march=x86-64-v2/v3/v4, so the compiler may use
-// anything in that level (POPCNT, BMI2, AVX512VL, ...), and the OS must save
-// the wider registers. xsimd 8.1 checks neither, so the level is asked of
-// libgcc too, which checks both.
-IsaSupport detect_isa_support() {
-    const auto arch = xsimd::available_architectures();
-    __builtin_cpu_init();
-    IsaSupport s;
-    s.sse4 = arch.sse4_2 && __builtin_cpu_supports("x86-64-v2");
-    s.avx2 = arch.fma3_avx2 && __builtin_cpu_supports("x86-64-v3");
-    s.avx512 = arch.avx512bw && __builtin_cpu_supports("x86-64-v4");
-    return s;
-}
-
-const IsaSupport& isa_support() {
-    static const IsaSupport support = detect_isa_support();
-    return support;
-}
-
-void require_supported(Isa isa) {
-    if (!isa_supported(isa))
-        throw std::invalid_argument("shade: instruction set '" + std::string(isa_name(isa)) +
-                                    "' is not supported by this CPU (best available: '" +
-                                    std::string(isa_name(best_supported_isa())) + "')");
-}
 
 glm::vec3 load_vec3(const float* x, const float* y, const float* z, std::size_t i) { return {x[i], y[i], z[i]}; }
 
@@ -113,24 +71,8 @@ void tonemap_gamma_scalar(std::size_t count, float* r, float* g, float* b) {
 
 }  // namespace
 
-bool isa_supported(Isa isa) {
-    switch (isa) {
-        case Isa::scalar: return true;
-        case Isa::sse4: return isa_support().sse4;
-        case Isa::avx2: return isa_support().avx2;
-        case Isa::avx512: return isa_support().avx512;
-    }
-    return false;
-}
-
-Isa best_supported_isa() {
-    for (Isa isa : {Isa::avx512, Isa::avx2, Isa::sse4})
-        if (isa_supported(isa)) return isa;
-    return Isa::scalar;
-}
-
 void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
-    require_supported(isa);
+    simd::require_supported(isa);
     const float* const light_arrays[6] = {lights.pos_x.data(),   lights.pos_y.data(),   lights.pos_z.data(),
                                           lights.color_r.data(), lights.color_g.data(), lights.color_b.data()};
     switch (isa) {
@@ -142,7 +84,7 @@ void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lig
 }
 
 void tonemap_gamma(Isa isa, std::size_t count, float* r, float* g, float* b) {
-    require_supported(isa);
+    simd::require_supported(isa);
     switch (isa) {
         case Isa::scalar: return tonemap_gamma_scalar(count, r, g, b);
         case Isa::sse4: return tonemap_gamma_sse4(count, r, g, b);

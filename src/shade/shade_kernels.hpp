@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "simd/isa.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::shade {
@@ -54,10 +55,10 @@ struct ShadingLights {
 };
 
 // Which code runs the kernels. `scalar` calls the reference shader per fragment.
-enum class Isa { scalar, sse4, avx2, avx512 };
-std::string_view isa_name(Isa isa);
-Isa best_supported_isa();               // by cpuid, cached
-bool isa_supported(Isa isa);
+using simd::Isa;
+using simd::isa_name;
+using simd::isa_supported;
+using simd::best_supported_isa;
 
 // HDR radiance of every fragment: out = shade_pbr(in[i]) for i < in.count.
 void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out);

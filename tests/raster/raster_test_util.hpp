@@ -34,7 +34,7 @@ inline std::vector<int> coverage(const std::optional<raster::RasterTriangle>& t,
     buffers.reset(size);
     raster::RasterCounters counters;
     raster::rasterize_triangle(*t, 0, {0, 0, size, size}, buffers, counters);
-    for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = buffers.triangle[i] != raster::kNoTriangle;
+    for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = buffers.covered(i);
     return covered;
 }
 

@@ -49,7 +49,7 @@ TEST_CASE("interpolation is perspective-correct: barycentrics match the ray-tria
     for (int j = 0; j < kSize; ++j)
         for (int i = 0; i < kSize; ++i) {
             const std::size_t p = std::size_t(j) * kSize + i;
-            if (buffers.triangle[p] == raster::kNoTriangle) continue;
+            if (!buffers.covered(p)) continue;
             CHECK(buffers.triangle[p] == 7);
             // Analytic: intersect the pixel's ray with the triangle's plane, then
             // express the hit point in the corners' barycentric coordinates.
