@@ -6,6 +6,9 @@
 # and TESSERA_SIMD_ARCH set to the matching xsimd architecture type, and adds their
 # objects to <target>. A kernel source instantiates its templates for
 # TESSERA_SIMD_ARCH and names its entry points with TESSERA_SIMD_SUFFIX.
+# With NO_FP_CONTRACT, a*b + c is never fused into an FMA, so the kernels
+# compute exactly what scalar code built without FMA does (the rasterizer's
+# kernels must match its scalar loop bit for bit).
 set(TESSERA_SIMD_LEVELS sse4 avx2 avx512)
 set(TESSERA_SIMD_MARCH_sse4 x86-64-v2)
 set(TESSERA_SIMD_MARCH_avx2 x86-64-v3)
@@ -15,7 +18,7 @@ set(TESSERA_SIMD_ARCH_avx2 "xsimd::fma3<xsimd::avx2>")
 set(TESSERA_SIMD_ARCH_avx512 "xsimd::avx512bw")
 
 function(tessera_add_simd_kernels target)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LINK" ${ARGN})
+  cmake_parse_arguments(ARG "NO_FP_CONTRACT" "" "SOURCES;LINK" ${ARGN})
   # The lowest ISA comes first in link order: inline functions shared between
   # the copies must resolve to code every x86-64 machine can run.
   foreach(level IN LISTS TESSERA_SIMD_LEVELS)
@@ -30,6 +33,9 @@ function(tessera_add_simd_kernels target)
       -march=${TESSERA_SIMD_MARCH_${level}} -mtune=generic
       # g++ 12 warns falsely inside avx512fintrin.h, and cannot build AVX-512 code at -O0.
       -Wno-maybe-uninitialized $<$<CONFIG:Debug>:-Og>)
+    if(ARG_NO_FP_CONTRACT)
+      target_compile_options(${obj} PRIVATE -ffp-contract=off)
+    endif()
     set_target_properties(${obj} PROPERTIES POSITION_INDEPENDENT_CODE ON)
     target_sources(${target} PRIVATE $<TARGET_OBJECTS:${obj}>)
   endforeach()

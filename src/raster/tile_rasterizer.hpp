@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raster/triangle_setup.hpp"
+#include "simd/isa.hpp"
 
 namespace tessera::raster {
 
@@ -53,8 +54,13 @@ inline Barycentrics perspective_barycentrics(const RasterTriangle& t, float lamb
     return {q1 * inv_sum, q2 * inv_sum};
 }
 
-// Rasterizes one triangle into the part of the tile it covers.
+// Rasterizes one triangle into the part of the tile it covers: the scalar
+// reference loop (int64 edge functions, one pixel at a time).
 void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
                         RasterCounters& counters);
+// The same with the ISA's vector kernel wherever the edge values fit in int32
+// (all but large triangles); bit-identical buffers either way.
+void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                        TileBuffers& buffers, RasterCounters& counters);
 
 }  // namespace tessera::raster

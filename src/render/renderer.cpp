@@ -255,7 +255,7 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
         const render::Chunk& chunk = chunks[c];
         for (std::uint32_t index : chunk.bins.tile(tile)) {
             const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
-            raster::rasterize_triangle(chunk.triangles[index], id, rect, s.raster, s.counters);
+            raster::rasterize_triangle(isa, chunk.triangles[index], id, rect, s.raster, s.counters);
         }
     }
 
