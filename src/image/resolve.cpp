@@ -15,4 +15,48 @@ glm::vec3 radiance_for_display(const glm::vec3& display) {
     return radiance;
 }
 
+namespace {
+
+// Calls write(image_index, covered, k) for each pixel of the tile in row-major
+// order, k counting the covered pixels met so far.
+template <class Write>
+void for_each_pixel(const raster::TileBuffers& coverage, const raster::TileRect& rect, int image_width, Write&& write) {
+    std::size_t k = 0;
+    for (int y = 0; y < rect.height(); ++y) {
+        const std::size_t tile_row = std::size_t(y) * coverage.side;
+        const std::size_t first = 3 * (std::size_t(rect.y0 + y) * image_width + rect.x0);
+        for (int x = 0; x < rect.width(); ++x) {
+            const bool covered = coverage.covered(tile_row + x);
+            write(first + 3 * std::size_t(x), covered, k);
+            k += covered;
+        }
+    }
+}
+
+}  // namespace
+
+void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
+                  const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
+                  RenderedImage& image) {
+    const glm::vec3 clear_radiance = radiance_for_display(clear_color);
+    const std::uint8_t clear_display[3] = {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g),
+                                           quantize_unorm8(clear_color.b)};
+    for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
+        float* radiance = &image.radiance[i];
+        if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];
+        else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
+    });
+    if (count > 0) shade::tonemap_gamma(isa, count, shaded.r, shaded.g, shaded.b);
+    for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
+        std::uint8_t* display = &image.display[i];
+        if (covered) {
+            display[0] = quantize_unorm8(shaded.r[k]);
+            display[1] = quantize_unorm8(shaded.g[k]);
+            display[2] = quantize_unorm8(shaded.b[k]);
+        } else {
+            display[0] = clear_display[0], display[1] = clear_display[1], display[2] = clear_display[2];
+        }
+    });
+}
+
 }  // namespace tessera::image

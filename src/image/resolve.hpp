@@ -5,6 +5,10 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/tile_rasterizer.hpp"
+#include "shade/shade_kernels.hpp"
+#include "tessera/renderer.hpp"
+
 namespace tessera::image {
 
 // 8-bit value of a display-referred channel, rounded to nearest as a UNORM8
@@ -17,5 +21,13 @@ inline std::uint8_t quantize_unorm8(float display) {
 // The scene-linear radiance that Reinhard + gamma map back onto a display
 // colour (the tonemap's inverse), kept finite: the EXR's background.
 glm::vec3 radiance_for_display(const glm::vec3& display);
+
+// Writes one tile of the frame, each pixel once: covered pixels take the next
+// of `count` shaded values (row-major order, as gathered), the others the
+// clear colour. Radiance goes to the image as it is; then `shaded` is
+// tonemapped in place (Reinhard, gamma) and quantized for the display image.
+void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
+                  const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
+                  RenderedImage& image);
 
 }  // namespace tessera::image

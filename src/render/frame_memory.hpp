@@ -8,7 +8,7 @@
 #include "geometry/shaded_vertex.hpp"
 #include "raster/binning.hpp"
 #include "raster/tile_rasterizer.hpp"
-#include "raster/triangle_setup.hpp"
+#include "raster/triangle_assembly.hpp"
 
 namespace tessera::render {
 
@@ -18,17 +18,23 @@ inline constexpr std::uint32_t kChunkTriangles = 16384;
 // A triangle id is (chunk << kChunkIdShift) | index in the chunk. Clipping
 // turns one triangle into at most 7, so a chunk holds fewer than 2^17.
 inline constexpr int kChunkIdShift = 17;
+inline constexpr std::uint32_t kChunkIndexMask = (1u << kChunkIdShift) - 1;
 inline constexpr std::uint32_t kMaxChunks = (raster::kNoTriangle >> kChunkIdShift);  // leaves kNoTriangle unused
 static_assert(kChunkTriangles * 7 < (1u << kChunkIdShift));
 
-// A run of one object's triangles and what setup made of them.
+// A run of one object's triangles and what assembly and binning made of them.
 struct Chunk {
     std::uint32_t object = 0;
     std::uint32_t first_triangle = 0;  // index into the mesh's triangles
     std::uint32_t triangle_count = 0;
-    std::vector<raster::RasterTriangle> triangles;        // after clipping, culling and setup
-    std::vector<geometry::ShadedVertex> clipped_vertices;  // new corners made by clipping
+    raster::AssembledTriangles assembled;
     raster::ChunkBins bins;
+
+    // A triangle corner's vertex: the frame's, or one this chunk's clipping made.
+    const geometry::ShadedVertex& vertex(std::uint32_t ref, const std::vector<geometry::ShadedVertex>& frame) const {
+        return (ref & geometry::kClippedVertexBit) ? assembled.clipped_vertices[ref & ~geometry::kClippedVertexBit]
+                                                   : frame[ref];
+    }
 };
 
 }  // namespace tessera::render

@@ -1,13 +1,13 @@
 // The frame driver: the only place that knows every stage. A frame is
-//   vertex stage -> clip, set up and bin (per chunk) -> per tile: rasterize,
-//   shade the visible pixels, resolve.
+//   vertex stage -> clip and set up triangles -> bin them into tiles ->
+//   per tile: rasterize, shade the visible pixels, resolve into the images.
+// Every pass runs in parallel; none depends on scheduling, so the image is the
+// same for any thread count.
 #include "tessera/renderer.hpp"
 
 #include <chrono>
-#include <cstring>
-#include <stdexcept>
-
 #include <optional>
+#include <stdexcept>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -19,42 +19,41 @@
 #include "geometry/vertex_stage.hpp"
 #include "image/resolve.hpp"
 #include "raster/raster_limits.hpp"
+#include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
 #include "shade/shade_kernels.hpp"
+#include "shade/surface_gather.hpp"
 
 namespace tessera {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+double ms_between(Clock::time_point start, Clock::time_point end) {
+    return std::chrono::duration<double, std::milli>(end - start).count();
 }
 
-shade::Isa parse_isa(const std::string& name) {
-    if (name == "auto") return shade::best_supported_isa();
-    for (shade::Isa isa : {shade::Isa::scalar, shade::Isa::sse4, shade::Isa::avx2, shade::Isa::avx512}) {
-        if (name != shade::isa_name(isa)) continue;
-        if (!shade::isa_supported(isa)) throw std::invalid_argument("this CPU cannot run the '" + name + "' kernels");
+simd::Isa parse_isa(const std::string& name) {
+    if (name == "auto") return simd::best_supported_isa();
+    for (simd::Isa isa : {simd::Isa::scalar, simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+        if (name != simd::isa_name(isa)) continue;
+        if (!simd::isa_supported(isa)) throw std::invalid_argument("this CPU cannot run the '" + name + "' kernels");
         return isa;
     }
     throw std::invalid_argument("unknown ISA '" + name + "' (expected auto, scalar, sse4, avx2 or avx512)");
 }
 
-// Per-worker scratch for a tile: its raster buffers and the visible pixels'
-// shading inputs and outputs in structure-of-arrays form.
+// One worker's memory for the tile pass, reserved once and reused.
 struct TileScratch {
     raster::TileBuffers raster;
+    shade::FragmentBuffer fragments;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
-    // world xyz, normal xyz, albedo rgb, metallic, roughness, ao, radiance rgb
-    enum Channel { wx, wy, wz, nx, ny, nz, ar, ag, ab, metal, rough, occl, out_r, out_g, out_b, kChannels };
-    std::vector<float> channels[kChannels];
+    double rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;  // busy time this frame
 
     void reserve(int tile_side) {
         raster.reset(tile_side);
-        const std::size_t n = shade::padded_count(std::size_t(tile_side) * tile_side);
-        for (auto& c : channels) c.resize(n);
+        fragments.reserve(std::size_t(tile_side) * tile_side);
     }
 };
 
@@ -62,7 +61,7 @@ struct TileScratch {
 
 struct Renderer::Frame {
     RenderSettings settings;
-    shade::Isa isa;
+    simd::Isa isa;
     // oneTBB runs no more workers than cores unless told: asking for more
     // threads than that must really give more (the determinism tests do).
     std::optional<tbb::global_control> allow_oversubscription;
@@ -74,7 +73,7 @@ struct Renderer::Frame {
     std::vector<std::uint32_t> outcodes;           // one per vertex
     std::vector<geometry::ScreenVertex> screen;    // one per vertex; set where the outcode has no clip bit
     std::vector<std::uint32_t> first_vertex;       // per object, into `vertices`
-    std::vector<render::Chunk> chunks;
+    std::vector<render::Chunk> chunks;             // only the first chunk_count are this frame's
     std::size_t chunk_count = 0;
     raster::TileGrid grid;
     shade::ShadingLights lights;
@@ -86,14 +85,12 @@ struct Renderer::Frame {
             allow_oversubscription.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(s.threads));
     }
 
-    void run_vertex_stage(const Scene& scene, const glm::mat4& view_projection);
-    void setup_and_bin(const Scene& scene);
+    void run_vertex_stage(const Scene& scene);
+    void cut_into_chunks(const Scene& scene);
+    void assemble_triangles(const Scene& scene);
+    void bin_triangles(const Scene& scene);
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, int tile, TileScratch& scratch);
-    const geometry::ShadedVertex& vertex(const render::Chunk& chunk, std::uint32_t ref) const {
-        return (ref & geometry::kClippedVertexBit) ? chunk.clipped_vertices[ref & ~geometry::kClippedVertexBit]
-                                                   : vertices[ref];
-    }
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -108,7 +105,7 @@ Renderer::Renderer(const RenderSettings& settings) {
 Renderer::~Renderer() = default;
 
 const FrameStats& Renderer::last_frame_stats() const { return frame_->stats; }
-std::string Renderer::isa_name() const { return std::string(shade::isa_name(frame_->isa)); }
+std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame_->isa)); }
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
 
 const RenderedImage& Renderer::render(const Scene& scene) {
@@ -117,27 +114,27 @@ const RenderedImage& Renderer::render(const Scene& scene) {
                                     " pixels per side");
     Frame& f = *frame_;
     f.stats = {};
-    const auto frame_start = Clock::now();
     f.arena.execute([&] {
-        const glm::mat4 view_projection =
-            projection_matrix(scene.camera, scene.width, scene.height) * view_matrix(scene.camera);
-        auto start = Clock::now();
-        f.run_vertex_stage(scene, view_projection);
-        f.stats.vertex_ms = ms_since(start);
-
-        start = Clock::now();
-        f.setup_and_bin(scene);
-        f.stats.setup_and_binning_ms = ms_since(start);
-
-        start = Clock::now();
+        const auto t0 = Clock::now();
+        f.run_vertex_stage(scene);
+        const auto t1 = Clock::now();
+        f.cut_into_chunks(scene);
+        f.assemble_triangles(scene);
+        const auto t2 = Clock::now();
+        f.bin_triangles(scene);
+        const auto t3 = Clock::now();
         f.render_tiles(scene);
-        f.stats.tiles_ms = ms_since(start);
+        const auto t4 = Clock::now();
+        f.stats.vertex_ms = ms_between(t0, t1);
+        f.stats.clip_setup_ms = ms_between(t1, t2);
+        f.stats.binning_ms = ms_between(t2, t3);
+        f.stats.tiles_ms = ms_between(t3, t4);
+        f.stats.total_ms = ms_between(t0, t4);
     });
-    f.stats.total_ms = ms_since(frame_start);
     return f.image;
 }
 
-void Renderer::Frame::run_vertex_stage(const Scene& scene, const glm::mat4& view_projection) {
+void Renderer::Frame::run_vertex_stage(const Scene& scene) {
     first_vertex.resize(scene.objects.size());
     std::size_t total = 0;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
@@ -149,6 +146,8 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene, const glm::mat4& view
     vertices.resize(total);
     outcodes.resize(total);
     screen.resize(total);
+    const glm::mat4 view_projection =
+        projection_matrix(scene.camera, scene.width, scene.height) * view_matrix(scene.camera);
     const geometry::GuardBand guard(scene.width, scene.height);
     const geometry::Viewport viewport{scene.width, scene.height};
     tbb::parallel_for(std::size_t(0), scene.objects.size(), [&](std::size_t o) {
@@ -164,8 +163,8 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene, const glm::mat4& view
     });
 }
 
-void Renderer::Frame::setup_and_bin(const Scene& scene) {
-    // Cut every object's triangles into chunks; the cut depends on the scene only.
+// Cuts every object's triangles into chunks; the cut depends on the scene only.
+void Renderer::Frame::cut_into_chunks(const Scene& scene) {
     chunk_count = 0;
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const auto triangles = std::uint32_t(scene.meshes[scene.objects[o].mesh].indices.size() / 3);
@@ -178,52 +177,29 @@ void Renderer::Frame::setup_and_bin(const Scene& scene) {
             chunk.triangle_count = std::min(render::kChunkTriangles, triangles - first);
         }
     }
-    grid = raster::TileGrid(scene.width, scene.height, settings.tile_size);
+}
+
+void Renderer::Frame::assemble_triangles(const Scene& scene) {
+    const raster::FrameVertices frame{vertices, outcodes, screen};
     const geometry::Viewport viewport{scene.width, scene.height};
     const geometry::GuardBand guard(scene.width, scene.height);
-
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
         render::Chunk& chunk = chunks[c];
-        chunk.triangles.clear();
-        chunk.triangles.reserve(chunk.triangle_count);  // most triangles stay one triangle
-        chunk.clipped_vertices.clear();
         const Object& object = scene.objects[chunk.object];
-        const std::uint32_t* indices = scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle);
-        const std::uint32_t base = first_vertex[chunk.object];
-        geometry::ClippedPolygon polygon;
-        for (std::uint32_t t = 0; t < chunk.triangle_count; ++t) {
-            const std::array<std::uint32_t, 3> ref{base + indices[3 * t], base + indices[3 * t + 1], base + indices[3 * t + 2]};
-            const std::uint32_t oc0 = outcodes[ref[0]], oc1 = outcodes[ref[1]], oc2 = outcodes[ref[2]];
-            const geometry::ClipResult kind = geometry::classify_triangle(oc0, oc1, oc2);
-            if (kind == geometry::ClipResult::rejected) continue;
-            if (kind == geometry::ClipResult::accepted) {
-                const auto set_up =
-                    raster::setup_triangle(viewport, {screen[ref[0]], screen[ref[1]], screen[ref[2]]}, ref, object.material);
-                if (set_up) chunk.triangles.push_back(*set_up);
-                continue;
-            }
-            geometry::clip_triangle(vertices[ref[0]], vertices[ref[1]], vertices[ref[2]],
-                                    (oc0 | oc1 | oc2) & geometry::kClipPlaneBits, guard, polygon);
-            // Give every new corner a reference into the chunk's clipped vertices.
-            std::array<std::uint32_t, geometry::ClippedPolygon::kMaxCorners> corner_ref;
-            for (int i = 0; i < polygon.count; ++i) {
-                if (polygon.source[i] >= 0) {
-                    corner_ref[i] = ref[polygon.source[i]];
-                } else {
-                    corner_ref[i] = geometry::kClippedVertexBit | std::uint32_t(chunk.clipped_vertices.size());
-                    chunk.clipped_vertices.push_back(polygon.corners[i]);
-                }
-            }
-            for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0
-                const auto set_up = raster::setup_triangle(
-                    viewport, {polygon.corners[0].clip_pos, polygon.corners[i].clip_pos, polygon.corners[i + 1].clip_pos},
-                    {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, object.material);
-                if (set_up) chunk.triangles.push_back(*set_up);
-            }
-        }
-        chunk.bins.build(grid, chunk.triangles);
+        const std::span<const std::uint32_t> indices(
+            scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
+        chunk.assembled.clear();
+        chunk.assembled.triangles.reserve(chunk.triangle_count);  // most triangles stay one triangle
+        raster::assemble_triangles(indices, first_vertex[chunk.object], object.material, frame, viewport, guard,
+                                   chunk.assembled);
     });
-    for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].triangles.size();
+    for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].assembled.triangles.size();
+}
+
+void Renderer::Frame::bin_triangles(const Scene& scene) {
+    grid = raster::TileGrid(scene.width, scene.height, settings.tile_size);
+    tbb::parallel_for(std::size_t(0), chunk_count,
+                      [&](std::size_t c) { chunks[c].bins.build(grid, chunks[c].assembled.triangles); });
 }
 
 void Renderer::Frame::render_tiles(const Scene& scene) {
@@ -233,117 +209,57 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     image.radiance.resize(3 * pixels);
     image.display.resize(3 * pixels);
     lights.assign(scene.camera.position, scene.lights);
-    for (TileScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0;
+    for (TileScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
         TileScratch& s = scratch.local();
         if (s.raster.side != grid.tile_size) s.reserve(grid.tile_size);
         render_tile(scene, tile, s);
     });
+    const double threads = arena.max_concurrency();
     for (const TileScratch& s : scratch) {
         stats.fragments_rasterized += s.counters.fragments;
         stats.fragments_shaded += s.fragments_shaded;
+        stats.rasterize_ms += s.rasterize_ms / threads;
+        stats.shade_ms += s.shade_ms / threads;
+        stats.resolve_ms += s.resolve_ms / threads;
     }
 }
 
 void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
-    s.raster.reset(grid.tile_size);
+    const auto t0 = Clock::now();
 
     // Rasterize: every chunk's triangles for this tile, in submission order.
+    s.raster.reset(grid.tile_size);
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const render::Chunk& chunk = chunks[c];
         for (std::uint32_t index : chunk.bins.tile(tile)) {
             const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
-            raster::rasterize_triangle(isa, chunk.triangles[index], id, rect, s.raster, s.counters);
+            raster::rasterize_triangle(isa, chunk.assembled.triangles[index], id, rect, s.raster, s.counters);
         }
     }
+    const auto t1 = Clock::now();
 
-    // Gather the visible pixels' surface points, row by row. Neighbouring
-    // pixels mostly show the same triangle, so its corners are fetched once per run.
-    auto& ch = s.channels;
-    std::size_t count = 0;
-    std::uint32_t cached_id = raster::kNoTriangle;
-    const raster::RasterTriangle* t = nullptr;
-    const Material* m = nullptr;
-    glm::vec3 world0{}, world_d1{}, world_d2{}, normal0{}, normal_d1{}, normal_d2{};
-    for (int y = 0; y < rect.height(); ++y) {
-        const std::size_t row = std::size_t(y) * s.raster.side;
-        for (int x = 0; x < rect.width(); ++x) {
-            if (!s.raster.covered(row + x)) continue;
-            const std::uint32_t id = s.raster.triangle[row + x];
-            if (id != cached_id) {
-                cached_id = id;
-                const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
-                t = &chunk.triangles[id & ((1u << render::kChunkIdShift) - 1)];
-                m = &scene.materials[t->material];
-                const geometry::ShadedVertex& v0 = vertex(chunk, t->vertex[0]);
-                const geometry::ShadedVertex& v1 = vertex(chunk, t->vertex[1]);
-                const geometry::ShadedVertex& v2 = vertex(chunk, t->vertex[2]);
-                world0 = v0.world_pos, world_d1 = v1.world_pos - v0.world_pos, world_d2 = v2.world_pos - v0.world_pos;
-                normal0 = v0.normal, normal_d1 = v1.normal - v0.normal, normal_d2 = v2.normal - v0.normal;
-            }
-            const auto [b1, b2] = raster::perspective_barycentrics(*t, s.raster.lambda1[row + x], s.raster.lambda2[row + x]);
-            const glm::vec3 world = world0 + b1 * world_d1 + b2 * world_d2;
-            const glm::vec3 normal = normal0 + b1 * normal_d1 + b2 * normal_d2;
-            ch[TileScratch::wx][count] = world.x, ch[TileScratch::wy][count] = world.y, ch[TileScratch::wz][count] = world.z;
-            ch[TileScratch::nx][count] = normal.x, ch[TileScratch::ny][count] = normal.y, ch[TileScratch::nz][count] = normal.z;
-            ch[TileScratch::ar][count] = m->albedo.r, ch[TileScratch::ag][count] = m->albedo.g, ch[TileScratch::ab][count] = m->albedo.b;
-            ch[TileScratch::metal][count] = m->metallic, ch[TileScratch::rough][count] = m->roughness;
-            ch[TileScratch::occl][count] = m->ao;
-            ++count;
-        }
-    }
-    // Padding lanes get copies of a real fragment so the kernels see sane values.
-    for (std::size_t i = count; i < shade::padded_count(count); ++i)
-        for (auto& c : ch) c[i] = count > 0 ? c[0] : 0.5f;
-
-    // Shade.
-    const shade::FragmentInputs in{count, ch[TileScratch::wx].data(), ch[TileScratch::wy].data(),
-                                   ch[TileScratch::wz].data(), ch[TileScratch::nx].data(), ch[TileScratch::ny].data(),
-                                   ch[TileScratch::nz].data(), ch[TileScratch::ar].data(), ch[TileScratch::ag].data(),
-                                   ch[TileScratch::ab].data(), ch[TileScratch::metal].data(),
-                                   ch[TileScratch::rough].data(), ch[TileScratch::occl].data()};
-    const shade::RadianceOutputs out{ch[TileScratch::out_r].data(), ch[TileScratch::out_g].data(),
-                                     ch[TileScratch::out_b].data()};
-    if (count > 0) shade::shade_fragments(isa, in, lights, out);
-
-    // Resolve: every pixel of the tile written once, shaded pixels in the order
-    // they were gathered, the rest with the clear colour. Radiance first, since
-    // the tonemap works in place.
-    const glm::vec3 clear_radiance = image::radiance_for_display(scene.clear_color);
-    const std::uint8_t clear_display[3] = {image::quantize_unorm8(scene.clear_color.r),
-                                           image::quantize_unorm8(scene.clear_color.g),
-                                           image::quantize_unorm8(scene.clear_color.b)};
-    auto for_each_pixel = [&](auto&& write) {
-        std::size_t k = 0;
-        for (int y = 0; y < rect.height(); ++y) {
-            const float* depth = &s.raster.depth[std::size_t(y) * s.raster.side];
-            const std::size_t first = 3 * (std::size_t(rect.y0 + y) * image.width + rect.x0);
-            for (int x = 0; x < rect.width(); ++x) {
-                const bool shaded = depth[x] < 1.0f;  // TileBuffers::covered
-                write(first + 3 * std::size_t(x), shaded, k);
-                k += shaded;
-            }
-        }
+    // Shade every visible pixel once.
+    auto lookup = [&](std::uint32_t id) {
+        const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
+        const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
+        return shade::TriangleCorners{&t, {&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
+                                           &chunk.vertex(t.vertex[2], vertices)}};
     };
-    for_each_pixel([&](std::size_t i, bool shaded, std::size_t k) {
-        float* radiance = &image.radiance[i];
-        if (shaded) radiance[0] = out.r[k], radiance[1] = out.g[k], radiance[2] = out.b[k];
-        else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
-    });
-    if (count > 0) shade::tonemap_gamma(isa, count, out.r, out.g, out.b);
-    for_each_pixel([&](std::size_t i, bool shaded, std::size_t k) {
-        std::uint8_t* display = &image.display[i];
-        if (shaded) {
-            display[0] = image::quantize_unorm8(out.r[k]);
-            display[1] = image::quantize_unorm8(out.g[k]);
-            display[2] = image::quantize_unorm8(out.b[k]);
-        } else {
-            display[0] = clear_display[0], display[1] = clear_display[1], display[2] = clear_display[2];
-        }
-    });
+    const std::size_t count =
+        shade::gather_surface_points(s.raster, rect.width(), rect.height(), scene.materials, lookup, s.fragments);
+    const shade::RadianceOutputs shaded = s.fragments.outputs();
+    if (count > 0) shade::shade_fragments(isa, s.fragments.inputs(count), lights, shaded);
     s.fragments_shaded += count;
+    const auto t2 = Clock::now();
+
+    image::resolve_tile(s.raster, rect, count, shaded, scene.clear_color, isa, image);
+    const auto t3 = Clock::now();
+    s.rasterize_ms += ms_between(t0, t1);
+    s.shade_ms += ms_between(t1, t2);
+    s.resolve_ms += ms_between(t2, t3);
 }
 
 }  // namespace tessera

@@ -1,0 +1,36 @@
+// Triangle assembly: a run of one object's indexed triangles through clipping
+// and triangle setup, into RasterTriangles ready to bin.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/clipper.hpp"
+#include "geometry/shaded_vertex.hpp"
+#include "geometry/viewport.hpp"
+#include "raster/triangle_setup.hpp"
+
+namespace tessera::raster {
+
+// The vertex stage's output for the whole frame, indexed by vertex reference.
+struct FrameVertices {
+    std::span<const geometry::ShadedVertex> vertices;
+    std::span<const std::uint32_t> outcodes;          // geometry::outcode() of each vertex
+    std::span<const geometry::ScreenVertex> screen;   // valid where the outcode has no clip-plane bit
+};
+
+struct AssembledTriangles {
+    std::vector<RasterTriangle> triangles;                 // in submission order
+    std::vector<geometry::ShadedVertex> clipped_vertices;  // corners made by clipping (kClippedVertexBit refs)
+    void clear() { triangles.clear(), clipped_vertices.clear(); }
+};
+
+// Appends to `out` the triangles of `indices` (three per triangle, relative to
+// `first_vertex`) that survive culling, clipping and setup. Accepted triangles
+// use the precomputed screen vertices; clipped ones become fans.
+void assemble_triangles(std::span<const std::uint32_t> indices, std::uint32_t first_vertex, std::uint32_t material,
+                        const FrameVertices& frame, const geometry::Viewport& viewport,
+                        const geometry::GuardBand& guard, AssembledTriangles& out);
+
+}  // namespace tessera::raster
