@@ -1,0 +1,512 @@
+#include "gl_renderer.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#define GL_GLEXT_PROTOTYPES 1  // glvnd's libOpenGL exports every core entry point: no loader needed
+#include <GL/glcorearb.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace tessera::gl_reference {
+
+namespace {
+
+// The reference vertex shader of pbr_lighting.md, verbatim but for the normal: the
+// reference's mat3(model) is only right for uniform scale (its own comment says so),
+// and Tessera uses the inverse-transpose, so the peer must too or ellipsoids differ.
+constexpr const char* kVertexShader = R"(#version 330 core
+layout (location = 0) in vec3 aPos;
+layout (location = 1) in vec2 aTexCoords;
+layout (location = 2) in vec3 aNormal;
+out vec2 TexCoords; out vec3 WorldPos; out vec3 Normal;
+uniform mat4 projection, view, model;
+uniform mat3 normalMatrix;  // transpose(inverse(mat3(model))), computed on the CPU as Tessera does
+void main() {
+    TexCoords = aTexCoords;
+    WorldPos  = vec3(model * vec4(aPos, 1.0));
+    Normal    = normalMatrix * aNormal;
+    gl_Position = projection * view * vec4(WorldPos, 1.0);
+}
+)";
+
+// The reference fragment shader, verbatim but for the light count: the arrays hold
+// LIGHT_ARRAY_SIZE = max(LIGHT_COUNT, 1) entries (GLSL has no empty arrays) and the
+// loop runs LIGHT_COUNT times, so a scene without lights gets ambient only.
+constexpr const char* kFragmentShaderBody = R"(
+in vec2 TexCoords; in vec3 WorldPos; in vec3 Normal;
+out vec4 FragColor;
+uniform vec3  albedo;  uniform float metallic;  uniform float roughness;  uniform float ao;
+uniform vec3  lightPositions[LIGHT_ARRAY_SIZE];  uniform vec3 lightColors[LIGHT_ARRAY_SIZE];  uniform vec3 camPos;
+const float PI = 3.14159265359;
+
+float DistributionGGX(vec3 N, vec3 H, float roughness) {
+    float a = roughness*roughness; float a2 = a*a;
+    float NdotH = max(dot(N, H), 0.0); float NdotH2 = NdotH*NdotH;
+    float denom = (NdotH2 * (a2 - 1.0) + 1.0);
+    return a2 / (PI * denom * denom);
+}
+float GeometrySchlickGGX(float NdotV, float roughness) {
+    float r = (roughness + 1.0); float k = (r*r) / 8.0;
+    return NdotV / (NdotV * (1.0 - k) + k);
+}
+float GeometrySmith(vec3 N, vec3 V, vec3 L, float roughness) {
+    return GeometrySchlickGGX(max(dot(N, L), 0.0), roughness) * GeometrySchlickGGX(max(dot(N, V), 0.0), roughness);
+}
+vec3 fresnelSchlick(float cosTheta, vec3 F0) {
+    return F0 + (1.0 - F0) * pow(clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
+}
+void main() {
+    vec3 N = normalize(Normal);
+    vec3 V = normalize(camPos - WorldPos);
+    vec3 F0 = mix(vec3(0.04), albedo, metallic);
+    vec3 Lo = vec3(0.0);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        vec3 L = normalize(lightPositions[i] - WorldPos);
+        vec3 H = normalize(V + L);
+        float distance = length(lightPositions[i] - WorldPos);
+        vec3 radiance = lightColors[i] / (distance * distance);
+        float NDF = DistributionGGX(N, H, roughness);
+        float G   = GeometrySmith(N, V, L, roughness);
+        vec3  F   = fresnelSchlick(max(dot(H, V), 0.0), F0);
+        vec3 kD = (vec3(1.0) - F) * (1.0 - metallic);
+        vec3 specular = NDF * G * F / (4.0 * max(dot(N, V), 0.0) * max(dot(N, L), 0.0) + 0.0001);
+        float NdotL = max(dot(N, L), 0.0);
+        Lo += (kD * albedo / PI + specular) * radiance * NdotL;
+    }
+    vec3 color = vec3(0.03) * albedo * ao + Lo;
+    color = color / (color + vec3(1.0));
+    color = pow(color, vec3(1.0/2.2));
+    FragColor = vec4(color, 1.0);
+}
+)";
+
+// Writes the object id (i + 1) as four bytes; k/255 converts back to unorm8 exactly.
+constexpr const char* kObjectIdFragmentShader = R"(#version 330 core
+out vec4 FragColor;
+uniform uint objectId;
+void main() {
+    uvec4 bytes = uvec4(objectId, objectId >> 8u, objectId >> 16u, objectId >> 24u) & 255u;
+    FragColor = vec4(bytes) / 255.0;
+}
+)";
+
+[[noreturn]] void fail(const std::string& what) { throw std::runtime_error("OpenGL reference: " + what); }
+
+std::string egl_error_name(EGLint code) {
+    switch (code) {
+        case EGL_SUCCESS: return "EGL_SUCCESS";
+        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+        default: return "EGL error 0x" + [code] {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%x", unsigned(code));
+            return std::string(buf);
+        }();
+    }
+}
+
+[[noreturn]] void fail_egl(const std::string& what) { fail(what + " (" + egl_error_name(eglGetError()) + ")"); }
+
+bool has_extension(const char* list, const char* name) {
+    if (list == nullptr) return false;
+    const std::size_t n = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+    return false;
+}
+
+void check_gl(const char* where) {
+    const GLenum err = glGetError();
+    if (err != GL_NO_ERROR) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "0x%04x", unsigned(err));
+        fail(std::string(where) + ": GL error " + buf);
+    }
+}
+
+GLuint compile_shader(GLenum type, const std::string& source, const char* name) {
+    const GLuint shader = glCreateShader(type);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE, log_length = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &log_length);
+    std::string log(std::size_t(log_length > 0 ? log_length : 0), '\0');
+    if (log_length > 0) glGetShaderInfoLog(shader, log_length, nullptr, log.data());
+    if (!ok) {
+        glDeleteShader(shader);
+        fail(std::string(name) + " failed to compile:\n" + log.c_str());
+    }
+    return shader;
+}
+
+GLuint link_program(const std::string& vertex_source, const std::string& fragment_source, const char* name) {
+    const GLuint vs = compile_shader(GL_VERTEX_SHADER, vertex_source, "vertex shader");
+    GLuint fs = 0;
+    try {
+        fs = compile_shader(GL_FRAGMENT_SHADER, fragment_source, name);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);  // flagged; freed with the program
+    glDeleteShader(fs);
+    GLint ok = GL_FALSE, log_length = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &log_length);
+    if (!ok) {
+        std::string log(std::size_t(log_length > 0 ? log_length : 0), '\0');
+        if (log_length > 0) glGetProgramInfoLog(program, log_length, nullptr, log.data());
+        glDeleteProgram(program);
+        fail(std::string(name) + " program failed to link:\n" + log.c_str());
+    }
+    return program;
+}
+
+// Uniform locations; -1 where the compiler dropped an unused uniform (glUniform ignores -1).
+struct Uniforms {
+    GLint projection = -1, view = -1, model = -1, normal_matrix = -1;
+    GLint albedo = -1, metallic = -1, roughness = -1, ao = -1, cam_pos = -1;
+    GLint light_positions = -1, light_colors = -1, object_id = -1;
+
+    explicit Uniforms(GLuint program) {
+        projection = glGetUniformLocation(program, "projection");
+        view = glGetUniformLocation(program, "view");
+        model = glGetUniformLocation(program, "model");
+        normal_matrix = glGetUniformLocation(program, "normalMatrix");
+        albedo = glGetUniformLocation(program, "albedo");
+        metallic = glGetUniformLocation(program, "metallic");
+        roughness = glGetUniformLocation(program, "roughness");
+        ao = glGetUniformLocation(program, "ao");
+        cam_pos = glGetUniformLocation(program, "camPos");
+        light_positions = glGetUniformLocation(program, "lightPositions");
+        light_colors = glGetUniformLocation(program, "lightColors");
+        object_id = glGetUniformLocation(program, "objectId");
+    }
+    Uniforms() = default;
+};
+
+struct GpuMesh {
+    GLuint vao = 0;
+    GLuint buffers[4] = {0, 0, 0, 0};  // positions, uvs, normals, indices
+    GLsizei index_count = 0;
+};
+
+}  // namespace
+
+struct GlReferenceRenderer::State {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+
+    GLuint fbo = 0, color_rb = 0, depth_rb = 0;
+    int fb_width = 0, fb_height = 0;
+
+    GLuint pbr_program = 0;
+    int pbr_light_count = -1;  // the LIGHT_COUNT pbr_program was built for
+    Uniforms pbr_uniforms;
+    GLuint id_program = 0;
+    Uniforms id_uniforms;
+
+    std::vector<GpuMesh> meshes;
+
+    ~State() {
+        if (context != EGL_NO_CONTEXT) {
+            free_meshes();
+            if (pbr_program) glDeleteProgram(pbr_program);
+            if (id_program) glDeleteProgram(id_program);
+            if (fbo) glDeleteFramebuffers(1, &fbo);
+            if (color_rb) glDeleteRenderbuffers(1, &color_rb);
+            if (depth_rb) glDeleteRenderbuffers(1, &depth_rb);
+            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(display, context);
+        }
+        if (display != EGL_NO_DISPLAY) eglTerminate(display);
+    }
+
+    void create_context() {
+        // Mesa's surfaceless platform picks a GPU render node when one exists; the peer
+        // is meant to be llvmpipe, so ask for software unless the caller decided otherwise.
+        setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+
+        const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+        if (!has_extension(client_extensions, "EGL_MESA_platform_surfaceless"))
+            fail("no EGL device/driver: EGL_MESA_platform_surfaceless is missing (install libegl-mesa0 "
+                 "libgl1-mesa-dri)");
+        display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (display == EGL_NO_DISPLAY) fail_egl("no EGL device/driver: install libegl-mesa0 libgl1-mesa-dri");
+        EGLint major = 0, minor = 0;
+        if (!eglInitialize(display, &major, &minor)) {
+            display = EGL_NO_DISPLAY;  // nothing to terminate
+            fail_egl("no EGL device/driver: eglInitialize failed on the surfaceless platform; install "
+                     "libegl-mesa0 libgl1-mesa-dri");
+        }
+        const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
+        if (!has_extension(extensions, "EGL_KHR_surfaceless_context"))
+            fail("EGL display lacks EGL_KHR_surfaceless_context");
+        if (!eglBindAPI(EGL_OPENGL_API)) fail_egl("eglBindAPI(EGL_OPENGL_API) failed");
+
+        // Rendering goes to our own FBO: a config only matters if the display needs one.
+        EGLConfig config = EGL_NO_CONFIG_KHR;
+        if (!has_extension(extensions, "EGL_KHR_no_config_context")) {
+            const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                             EGL_NONE};
+            EGLint count = 0;
+            if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count < 1)
+                fail_egl("no EGL config renders with desktop OpenGL");
+        }
+        const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                          3,
+                                          EGL_CONTEXT_MINOR_VERSION,
+                                          3,
+                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                          EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                          EGL_NONE};
+        context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+        if (context == EGL_NO_CONTEXT) fail_egl("cannot create an OpenGL 3.3 core context");
+        if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+            fail_egl("eglMakeCurrent without a surface failed");
+        if (glGetString(GL_VERSION) == nullptr) fail("the context is current but glGetString(GL_VERSION) is null");
+
+        id_program = link_program(kVertexShader, kObjectIdFragmentShader, "object-id fragment shader");
+        id_uniforms = Uniforms(id_program);
+        check_gl("creating the context");
+    }
+
+    void ensure_framebuffer(int width, int height) {
+        if (fbo != 0 && fb_width == width && fb_height == height) return;
+        GLint max_size = 0;
+        glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+        if (width > max_size || height > max_size)
+            fail(std::to_string(width) + "x" + std::to_string(height) + " exceeds GL_MAX_RENDERBUFFER_SIZE " +
+                 std::to_string(max_size));
+        if (fbo == 0) {
+            glGenFramebuffers(1, &fbo);
+            glGenRenderbuffers(1, &color_rb);
+            glGenRenderbuffers(1, &depth_rb);
+        }
+        glBindRenderbuffer(GL_RENDERBUFFER, color_rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+        glBindRenderbuffer(GL_RENDERBUFFER, depth_rb);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+        const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "0x%04x", unsigned(status));
+            fail(std::string("framebuffer incomplete: ") + buf);
+        }
+        check_gl("creating the framebuffer");
+        fb_width = width;
+        fb_height = height;
+    }
+
+    void ensure_pbr_program(int light_count) {
+        if (pbr_program != 0 && pbr_light_count == light_count) return;
+        if (pbr_program) glDeleteProgram(pbr_program);
+        pbr_program = 0;
+        const std::string fragment = "#version 330 core\n#define LIGHT_COUNT " + std::to_string(light_count) +
+                                     "\n#define LIGHT_ARRAY_SIZE " + std::to_string(light_count > 0 ? light_count : 1) +
+                                     "\n" + kFragmentShaderBody;
+        pbr_program = link_program(kVertexShader, fragment, "PBR fragment shader");
+        pbr_uniforms = Uniforms(pbr_program);
+        pbr_light_count = light_count;
+        check_gl("building the PBR program");
+    }
+
+    void free_meshes() {
+        for (GpuMesh& m : meshes) {
+            glDeleteVertexArrays(1, &m.vao);
+            glDeleteBuffers(4, m.buffers);
+        }
+        meshes.clear();
+    }
+
+    // Uploads every mesh afresh: simple, and outside the timed frames.
+    void upload_meshes(const Scene& scene) {
+        free_meshes();
+        for (const Mesh& mesh : scene.meshes) {
+            GpuMesh& m = meshes.emplace_back();
+            glGenVertexArrays(1, &m.vao);
+            glGenBuffers(4, m.buffers);
+            glBindVertexArray(m.vao);
+            const auto attribute = [&](GLuint location, GLuint buffer, GLint components, const void* data,
+                                       std::size_t bytes) {
+                glBindBuffer(GL_ARRAY_BUFFER, buffer);
+                glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
+                glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+                glEnableVertexAttribArray(location);
+            };
+            attribute(0, m.buffers[0], 3, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+            if (mesh.uvs.size() == mesh.positions.size()) {
+                attribute(1, m.buffers[1], 2, mesh.uvs.data(), mesh.uvs.size() * sizeof(glm::vec2));
+            } else {
+                glDisableVertexAttribArray(1);  // reads the current value; (0, 0) as Tessera uses
+                glVertexAttrib2f(1, 0.0f, 0.0f);
+            }
+            attribute(2, m.buffers[2], 3, mesh.normals.data(), mesh.normals.size() * sizeof(glm::vec3));
+            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.buffers[3]);  // recorded in the VAO
+            glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), GL_STATIC_DRAW);
+            m.index_count = GLsizei(mesh.indices.size());
+        }
+        glBindVertexArray(0);
+        check_gl("uploading meshes");
+    }
+
+    void prepare(const Scene& scene) {
+        ensure_framebuffer(scene.width, scene.height);
+        ensure_pbr_program(int(scene.lights.size()));
+        upload_meshes(scene);
+    }
+
+    // One frame into the FBO: clear, then every object. No glFinish here.
+    void draw(const Scene& scene, bool object_ids) {
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, scene.width, scene.height);
+        if (object_ids)
+            glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        else
+            glClearColor(scene.clear_color.r, scene.clear_color.g, scene.clear_color.b, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);
+
+        const Uniforms& u = object_ids ? id_uniforms : pbr_uniforms;
+        glUseProgram(object_ids ? id_program : pbr_program);
+        const glm::mat4 view = view_matrix(scene.camera);
+        const glm::mat4 projection = projection_matrix(scene.camera, scene.width, scene.height);
+        glUniformMatrix4fv(u.view, 1, GL_FALSE, glm::value_ptr(view));
+        glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
+        glUniform3fv(u.cam_pos, 1, glm::value_ptr(scene.camera.position));
+        if (!object_ids && !scene.lights.empty()) {
+            std::vector<glm::vec3> positions, colors;
+            for (const PointLight& light : scene.lights) {
+                positions.push_back(light.position);
+                colors.push_back(light.color);
+            }
+            glUniform3fv(u.light_positions, GLsizei(positions.size()), glm::value_ptr(positions[0]));
+            glUniform3fv(u.light_colors, GLsizei(colors.size()), glm::value_ptr(colors[0]));
+        }
+        for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+            const Object& object = scene.objects[i];
+            const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.model)));
+            glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(object.model));
+            glUniformMatrix3fv(u.normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+            if (object_ids) {
+                glUniform1ui(u.object_id, GLuint(i + 1));
+            } else {
+                const Material& material = scene.materials[object.material];
+                glUniform3fv(u.albedo, 1, glm::value_ptr(material.albedo));
+                glUniform1f(u.metallic, material.metallic);
+                glUniform1f(u.roughness, material.roughness);
+                glUniform1f(u.ao, material.ao);
+            }
+            const GpuMesh& mesh = meshes[object.mesh];
+            glBindVertexArray(mesh.vao);
+            glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+        }
+        glBindVertexArray(0);
+    }
+
+    // The colour attachment as RGBA8, row 0 at the top (GL's row 0 is the bottom).
+    std::vector<std::uint8_t> read_rgba_top_down(int width, int height) {
+        std::vector<std::uint8_t> bottom_up(std::size_t(width) * std::size_t(height) * 4);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+        check_gl("reading pixels");
+        std::vector<std::uint8_t> top_down(bottom_up.size());
+        const std::size_t row_bytes = std::size_t(width) * 4;
+        for (int y = 0; y < height; ++y)
+            std::memcpy(&top_down[std::size_t(y) * row_bytes], &bottom_up[std::size_t(height - 1 - y) * row_bytes],
+                        row_bytes);
+        return top_down;
+    }
+};
+
+GlReferenceRenderer::GlReferenceRenderer() : state_(std::make_unique<State>()) { state_->create_context(); }
+
+GlReferenceRenderer::~GlReferenceRenderer() = default;
+
+RenderedImage GlReferenceRenderer::render(const Scene& scene) {
+    state_->prepare(scene);
+    state_->draw(scene, false);
+    glFinish();
+    check_gl("rendering");
+    const std::vector<std::uint8_t> rgba = state_->read_rgba_top_down(scene.width, scene.height);
+    RenderedImage image;
+    image.width = scene.width;
+    image.height = scene.height;
+    image.display.resize(std::size_t(scene.width) * std::size_t(scene.height) * 3);
+    for (std::size_t p = 0, n = image.display.size() / 3; p < n; ++p)
+        for (int c = 0; c < 3; ++c) image.display[p * 3 + std::size_t(c)] = rgba[p * 4 + std::size_t(c)];
+    return image;
+}
+
+std::vector<std::uint32_t> GlReferenceRenderer::render_object_ids(const Scene& scene) {
+    state_->prepare(scene);
+    state_->draw(scene, true);
+    glFinish();
+    check_gl("rendering object ids");
+    const std::vector<std::uint8_t> rgba = state_->read_rgba_top_down(scene.width, scene.height);
+    std::vector<std::uint32_t> ids(rgba.size() / 4);
+    for (std::size_t p = 0; p < ids.size(); ++p)
+        ids[p] = std::uint32_t(rgba[p * 4]) | std::uint32_t(rgba[p * 4 + 1]) << 8 |
+                 std::uint32_t(rgba[p * 4 + 2]) << 16 | std::uint32_t(rgba[p * 4 + 3]) << 24;
+    return ids;
+}
+
+std::vector<double> GlReferenceRenderer::time_frames(const Scene& scene, int frames, int warmup) {
+    state_->prepare(scene);
+    for (int i = 0; i < warmup; ++i) {
+        state_->draw(scene, false);
+        glFinish();
+    }
+    std::vector<double> ms;
+    ms.reserve(std::size_t(frames > 0 ? frames : 0));
+    for (int i = 0; i < frames; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        state_->draw(scene, false);
+        glFinish();
+        const auto end = std::chrono::steady_clock::now();
+        ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    }
+    check_gl("timing frames");
+    return ms;
+}
+
+std::string GlReferenceRenderer::renderer_name() const {
+    const GLubyte* s = glGetString(GL_RENDERER);
+    return s ? reinterpret_cast<const char*>(s) : "";
+}
+
+std::string GlReferenceRenderer::version() const {
+    const GLubyte* s = glGetString(GL_VERSION);
+    return s ? reinterpret_cast<const char*>(s) : "";
+}
+
+}  // namespace tessera::gl_reference

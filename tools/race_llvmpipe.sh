@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Races Tessera against Mesa's llvmpipe (the OpenGL peer renderer running the same
+# reference GLSL) on one scene, with the same thread count for both.
+#   tools/race_llvmpipe.sh [SCENE] [WIDTH HEIGHT] [THREADS] [FRAMES]
+# Defaults: scenes/spheres.toml 1280 720, 2 threads, 30 frames. SCENE may be a path or a
+# name in scenes/. BUILD_DIR overrides the build folder (default build/, Release).
+# The two alternate for several rounds (ROUNDS, default 3) so both see the same machine
+# noise; the result is the median over rounds of each one's median frame time, and
+# llvmpipe/tessera (above 1: Tessera is faster). Frame times exclude readback and file output.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+scene="${1:-spheres}"
+width="${2:-1280}"
+height="${3:-720}"
+threads="${4:-2}"
+frames="${5:-30}"
+rounds="${ROUNDS:-3}"
+build="${BUILD_DIR:-$root/build}"
+
+[ -f "$scene" ] || scene="$root/scenes/${scene%.toml}.toml"
+[ -f "$scene" ] || { echo "race_llvmpipe: no scene file $scene" >&2; exit 1; }
+
+# Builds if needed: configure once, then an incremental build of the two binaries.
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+cmake --build "$build" -j"$(nproc)" --target tessera tessera_gl_reference_cli >/dev/null
+[ -x "$build/tessera_gl_reference" ] || {
+  echo "race_llvmpipe: $build/tessera_gl_reference was not built (OpenGL/EGL missing? see tools/install_dependencies.sh)" >&2
+  exit 1
+}
+
+field() {  # field JSON NAME: one top-level number from a JSON object
+  python3 -c 'import json, sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"
+}
+
+echo "race: $(basename "$scene") ${width}x${height}, $threads threads, $frames frames, $rounds rounds"
+tessera_medians=()
+llvmpipe_medians=()
+for round in $(seq 1 "$rounds"); do
+  t_json="$("$build/tessera" bench "$scene" --width "$width" --height "$height" --threads "$threads" \
+    --frames "$frames" --json)"
+  # A high trim threshold stops glibc returning llvmpipe's large per-frame scene
+  # allocations to the kernel each frame (which would time page faults, not rendering).
+  g_json="$(LP_NUM_THREADS="$threads" GLIBC_TUNABLES=glibc.malloc.trim_threshold=1073741824 \
+    "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" --json)"
+  t_ms="$(field "$t_json" frame_ms_median)"
+  g_ms="$(field "$g_json" frame_ms_median)"
+  tessera_medians+=("$t_ms")
+  llvmpipe_medians+=("$g_ms")
+  printf '  round %d: tessera %9.2f ms   llvmpipe %9.2f ms   ratio %5.2f\n' "$round" "$t_ms" "$g_ms" \
+    "$(python3 -c 'import sys; print(float(sys.argv[2]) / float(sys.argv[1]))' "$t_ms" "$g_ms")"
+done
+echo "  (tessera: $(field "$t_json" isa) kernels, $(field "$t_json" threads) threads; $(field "$g_json" renderer), LP_NUM_THREADS=$threads)"
+
+python3 - "${tessera_medians[*]}" "${llvmpipe_medians[*]}" <<'PY'
+import statistics, sys
+t = statistics.median(float(v) for v in sys.argv[1].split())
+g = statistics.median(float(v) for v in sys.argv[2].split())
+print(f"tessera  median {t:9.2f} ms")
+print(f"llvmpipe median {g:9.2f} ms")
+r = statistics.median(float(b) / float(a) for a, b in zip(sys.argv[1].split(), sys.argv[2].split()))
+print(f"llvmpipe/tessera {g / t:.2f}x (ratio of the medians; median of the per-round ratios {r:.2f}x)")
+PY
