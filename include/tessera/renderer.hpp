@@ -13,7 +13,10 @@ namespace tessera {
 struct RenderSettings {
     int threads = 0;        // worker threads; 0 = one per hardware thread
     int tile_size = 32;     // screen tile side in pixels, a power of two in [8, 256]
-    std::string isa = "auto";  // shading kernels: auto | scalar | sse4 | avx2 | avx512
+    std::string isa = "auto";  // SIMD kernels: auto | scalar | sse4 | avx2 | avx512
+    // Fill RenderedImage::radiance (what EXR output needs). Without it a frame
+    // writes only the 8-bit display image, as an OpenGL RGBA8 framebuffer would.
+    bool keep_radiance = true;
 };
 
 // A rendered frame, row 0 at the top of the picture.
@@ -21,7 +24,8 @@ struct RenderedImage {
     int width = 0;
     int height = 0;
     // Scene-linear HDR radiance before tonemapping, RGB interleaved: what EXR
-    // stores. Background pixels hold the radiance that tonemaps to the clear colour.
+    // stores. Background pixels hold the radiance that tonemaps to the clear
+    // colour. Empty when the renderer was told not to keep it.
     std::vector<float> radiance;
     // Display-referred RGB8 after Reinhard and gamma 1/2.2: what PNG stores.
     // Background pixels hold the clear colour, as glClear writes it.

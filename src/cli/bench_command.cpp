@@ -27,7 +27,9 @@ int run_bench(const BenchCommand& cmd) {
     Scene scene = load_scene_file(cmd.scene_path);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
-    Renderer renderer(cmd.settings);
+    RenderSettings settings = cmd.settings;
+    settings.keep_radiance = cmd.keep_radiance;
+    Renderer renderer(settings);
     for (int i = 0; i < cmd.warmup; ++i) renderer.render(scene);
 
     // Per-frame samples of each figure; medians are reported.

@@ -15,6 +15,7 @@ struct BenchCommand {
     int width = 0;  // 0: the scene's own
     int height = 0;
     bool json = false;
+    bool keep_radiance = false;  // like a render to PNG; --radiance adds the EXR's HDR image
     RenderSettings settings;
 };
 

@@ -40,6 +40,11 @@ void write_image(const RenderedImage& image, const std::filesystem::path& path) 
         throw ImageError(path.string() + ": unsupported output format '" + path.extension().string() +
                          "' (expected .png or .exr)");
     if (image.width <= 0 || image.height <= 0) throw ImageError(path.string() + ": nothing was rendered");
+    const std::size_t values = 3 * std::size_t(image.width) * std::size_t(image.height);
+    if (format == ImageFormat::exr && image.radiance.size() != values)
+        throw ImageError(path.string() + ": no HDR radiance was kept for this image (RenderSettings::keep_radiance)");
+    if (format == ImageFormat::png && image.display.size() != values)
+        throw ImageError(path.string() + ": the display image is incomplete");
 
     OIIO::ImageBuf buffer;
     if (format == ImageFormat::png) {

@@ -41,7 +41,7 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
     const glm::vec3 clear_radiance = radiance_for_display(clear_color);
     const std::uint8_t clear_display[3] = {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g),
                                            quantize_unorm8(clear_color.b)};
-    for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
+    if (!image.radiance.empty()) for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
         float* radiance = &image.radiance[i];
         if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];
         else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;

@@ -24,8 +24,9 @@ glm::vec3 radiance_for_display(const glm::vec3& display);
 
 // Writes one tile of the frame, each pixel once: covered pixels take the next
 // of `count` shaded values (row-major order, as gathered), the others the
-// clear colour. Radiance goes to the image as it is; then `shaded` is
-// tonemapped in place (Reinhard, gamma) and quantized for the display image.
+// clear colour. Radiance goes to the image as it is (if the image keeps
+// radiance); then `shaded` is tonemapped in place (Reinhard, gamma) and
+// quantized for the display image.
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
                   const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
                   RenderedImage& image);

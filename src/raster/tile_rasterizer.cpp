@@ -21,27 +21,6 @@ void TileBuffers::reset(int tile_side) {
 
 namespace {
 
-// One edge a→b stepped over pixel centres. The top-left rule is a bias:
-// a centre exactly on an edge belongs to the triangle only when the edge is a
-// top edge (horizontal, interior below) or a left edge (interior to its right),
-// so edges of neither kind test E - 1 >= 0 instead of E >= 0.
-struct EdgeStepper {
-    std::int64_t row;     // biased E at the current row's first pixel centre
-    std::int64_t step_x;  // change of E for one pixel right
-    std::int64_t step_y;  // change of E for one pixel down
-    std::int64_t bias;    // 0 or -1
-
-    EdgeStepper(std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by, std::int64_t px, std::int64_t py) {
-        const std::int64_t dx = std::int64_t(bx) - ax;
-        const std::int64_t dy = std::int64_t(by) - ay;
-        const bool top_left = dy < 0 || (dy == 0 && dx > 0);
-        bias = top_left ? 0 : -1;
-        row = edge_function(ax, ay, bx, by, px, py) + bias;
-        step_x = -dy * kSubpixelScale;
-        step_y = dx * kSubpixelScale;
-    }
-};
-
 // The pixel block of the tile a triangle can cover, and its edges stepped from
 // the block's first pixel centre.
 struct TriangleInTile {
@@ -49,7 +28,7 @@ struct TriangleInTile {
     EdgeStepper e0, e1, e2;              // edge k is opposite corner k: its value is corner k's weight × area
 };
 
-std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
+[[gnu::always_inline]] inline std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
     const int x_begin = std::max(t.px_min, tile.x0), x_end = std::min(t.px_max + 1, tile.x1);
     const int y_begin = std::max(t.py_min, tile.y0), y_end = std::min(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return std::nullopt;

@@ -22,6 +22,23 @@ std::int32_t last_centre_at_or_before(std::int32_t v) {
     return n >= 0 ? n / kSubpixelScale : -((-n + kSubpixelScale - 1) / kSubpixelScale);
 }
 
+// Tests every pixel centre in the triangle's box (meant for small boxes).
+bool covers_a_centre(const RasterTriangle& t) {
+    const std::int64_t px = std::int64_t(t.px_min) * kSubpixelScale + kSubpixelScale / 2;
+    const std::int64_t py = std::int64_t(t.py_min) * kSubpixelScale + kSubpixelScale / 2;
+    EdgeStepper e0(t.x[1], t.y[1], t.x[2], t.y[2], px, py), e1(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
+        e2(t.x[0], t.y[0], t.x[1], t.y[1], px, py);
+    for (int y = t.py_min; y <= t.py_max; ++y) {
+        std::int64_t w0 = e0.row, w1 = e1.row, w2 = e2.row;
+        for (int x = t.px_min; x <= t.px_max; ++x) {
+            if ((w0 | w1 | w2) >= 0) return true;
+            w0 += e0.step_x, w1 += e1.step_x, w2 += e2.step_x;
+        }
+        e0.row += e0.step_y, e1.row += e1.step_y, e2.row += e2.step_y;
+    }
+    return false;
+}
+
 }  // namespace
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
@@ -51,8 +68,11 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
     t.px_max = std::min(last_centre_at_or_before(max_x), viewport.width - 1);
     t.py_min = std::max(first_centre_at_or_after(min_y), 0);
     t.py_max = std::min(last_centre_at_or_before(max_y), viewport.height - 1);
-    // Most triangles of a finely tessellated mesh fall between pixel centres.
+    // Most triangles of a finely tessellated mesh fall between pixel centres:
+    // those whose box holds no centre, and small ones that cover none of the
+    // few centres in their box, go no further.
     if (t.px_min > t.px_max || t.py_min > t.py_max) return std::nullopt;
+    if (t.px_max - t.px_min <= 1 && t.py_max - t.py_min <= 1 && !covers_a_centre(t)) return std::nullopt;
     return t;
 }
 

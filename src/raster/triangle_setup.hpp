@@ -41,4 +41,27 @@ inline std::int64_t edge_function(std::int64_t ax, std::int64_t ay, std::int64_t
     return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
 }
 
+// One edge a→b of a set-up triangle, stepped over pixel centres from a
+// starting centre. The top-left rule is a bias: a centre exactly on an edge
+// belongs to the triangle only when the edge is a top edge (horizontal,
+// interior below) or a left edge (interior to its right), so edges of
+// neither kind test E - 1 >= 0 instead of E >= 0.
+struct EdgeStepper {
+    std::int64_t row;     // biased E at the current row's first pixel centre
+    std::int64_t step_x;  // change of E for one pixel right
+    std::int64_t step_y;  // change of E for one pixel down
+    std::int64_t bias;    // 0 or -1
+
+    // (px, py): the starting pixel centre in fixed point.
+    EdgeStepper(std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by, std::int64_t px, std::int64_t py) {
+        const std::int64_t dx = std::int64_t(bx) - ax;
+        const std::int64_t dy = std::int64_t(by) - ay;
+        const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+        bias = top_left ? 0 : -1;
+        row = edge_function(ax, ay, bx, by, px, py) + bias;
+        step_x = -dy * geometry::kSubpixelScale;
+        step_y = dx * geometry::kSubpixelScale;
+    }
+};
+
 }  // namespace tessera::raster

@@ -206,7 +206,8 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     image.width = scene.width;
     image.height = scene.height;
     const std::size_t pixels = std::size_t(scene.width) * scene.height;
-    image.radiance.resize(3 * pixels);
+    if (settings.keep_radiance) image.radiance.resize(3 * pixels);
+    else image.radiance.clear();
     image.display.resize(3 * pixels);
     lights.assign(scene.camera.position, scene.lights);
     for (TileScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;

@@ -23,7 +23,7 @@ TEST_CASE("binning lists each triangle in exactly the tiles its pixel box touche
     };
     add({2, 2}, {10, 2}, {2, 10});     // tile 0 only
     add({20, 20}, {50, 20}, {20, 50});  // tiles 0, 1, 4, 5
-    add({5, 5}, {6, 5}, {5, 6});       // tile 0
+    add({5, 5}, {7, 5}, {5, 7});       // tile 0
     raster::ChunkBins bins;
     bins.build(grid, triangles);
     CHECK(std::vector<std::uint32_t>(bins.tile(0).begin(), bins.tile(0).end()) == std::vector<std::uint32_t>{0, 1, 2});

@@ -112,7 +112,9 @@ TEST_CASE("top-left rule: a centre on a top or left edge is covered, on a bottom
 }
 
 TEST_CASE("triangles covering no pixel centre are dropped at setup") {
-    CHECK_FALSE(screen_triangle({10.1f, 10.1f}, {10.4f, 10.1f}, {10.1f, 10.4f}, kSize));
-    CHECK_FALSE(screen_triangle({5, 5}, {10, 10}, {15, 15}, kSize));  // no area
-    CHECK(screen_triangle({10.1f, 10.1f}, {10.9f, 10.1f}, {10.1f, 10.9f}, kSize));
+    CHECK_FALSE(screen_triangle({10.1f, 10.1f}, {10.4f, 10.1f}, {10.1f, 10.4f}, kSize));  // no centre in its box
+    CHECK_FALSE(screen_triangle({5, 5}, {10, 10}, {15, 15}, kSize));                     // no area
+    // The centre (10.5, 10.5) lies exactly on the hypotenuse, a bottom-right edge: not covered.
+    CHECK_FALSE(screen_triangle({10.1f, 10.1f}, {10.9f, 10.1f}, {10.1f, 10.9f}, kSize));
+    CHECK(screen_triangle({10.1f, 10.1f}, {11.0f, 10.1f}, {10.1f, 11.0f}, kSize));
 }

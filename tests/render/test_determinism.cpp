@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "test_paths.hpp"
 
@@ -55,4 +56,16 @@ TEST_CASE("renderer settings are validated") {
     CHECK_THROWS_AS(Renderer({.tile_size = 4}), std::invalid_argument);
     CHECK_THROWS_AS(Renderer({.threads = -1}), std::invalid_argument);
     CHECK_THROWS_WITH_AS(Renderer({.isa = "neon"}), doctest::Contains("unknown ISA"), std::invalid_argument);
+}
+
+TEST_CASE("dropping the HDR radiance image leaves the display image as it was, and EXR output is refused") {
+    const Scene scene = load_scene_file(test::scene_path("shapes.toml"));
+    Renderer with({.threads = 2});
+    const RenderedImage reference = with.render(scene);
+    Renderer without({.threads = 2, .keep_radiance = false});
+    const RenderedImage& image = without.render(scene);
+    CHECK(image.radiance.empty());
+    CHECK(image.display == reference.display);
+    CHECK_THROWS_WITH_AS(write_image(image, test::output_dir("no_radiance") / "out.exr"),
+                         doctest::Contains("no HDR radiance"), ImageError);
 }
