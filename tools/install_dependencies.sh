@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   g++ make cmake pkg-config
   libglm-dev libtbb-dev libopenimageio-dev openimageio-tools libxsimd-dev
-  doctest-dev libtomlplusplus-dev libcli11-dev
+  doctest-dev libtomlplusplus-dev libcli11-dev libbenchmark-dev
   # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
 )

@@ -35,6 +35,23 @@ void for_each_pixel(const raster::TileBuffers& coverage, const raster::TileRect&
 
 }  // namespace
 
+void clear_tile(const raster::TileRect& rect, const glm::vec3& clear_color, RenderedImage& image) {
+    const glm::vec3 clear_radiance = radiance_for_display(clear_color);
+    const std::uint8_t clear_display[3] = {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g),
+                                           quantize_unorm8(clear_color.b)};
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        const std::size_t first = 3 * (std::size_t(y) * image.width + rect.x0);
+        const std::size_t end = first + 3 * std::size_t(rect.width());
+        for (std::size_t i = first; i < end; i += 3)
+            image.display[i] = clear_display[0], image.display[i + 1] = clear_display[1],
+            image.display[i + 2] = clear_display[2];
+        if (!image.radiance.empty())
+            for (std::size_t i = first; i < end; i += 3)
+                image.radiance[i] = clear_radiance.r, image.radiance[i + 1] = clear_radiance.g,
+                image.radiance[i + 2] = clear_radiance.b;
+    }
+}
+
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
                   const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
                   RenderedImage& image) {

@@ -31,4 +31,7 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
                   const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
                   RenderedImage& image);
 
+// Writes the clear colour over a tile no triangle touched.
+void clear_tile(const raster::TileRect& rect, const glm::vec3& clear_color, RenderedImage& image);
+
 }  // namespace tessera::image

@@ -232,15 +232,23 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     const auto t0 = Clock::now();
 
     // Rasterize: every chunk's triangles for this tile, in submission order.
-    s.raster.reset(grid.tile_size);
+    const std::uint64_t passed_before = s.counters.depth_passed;
+    bool reset = false;
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const render::Chunk& chunk = chunks[c];
         for (std::uint32_t index : chunk.bins.tile(tile)) {
+            if (!reset) s.raster.reset(grid.tile_size), reset = true;
             const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
             raster::rasterize_triangle(isa, chunk.assembled.triangles[index], id, rect, s.raster, s.counters);
         }
     }
     const auto t1 = Clock::now();
+    if (s.counters.depth_passed == passed_before) {  // nothing drawn here: background only
+        image::clear_tile(rect, scene.clear_color, image);
+        s.resolve_ms += ms_between(t1, Clock::now());
+        s.rasterize_ms += ms_between(t0, t1);
+        return;
+    }
 
     // Shade every visible pixel once.
     auto lookup = [&](std::uint32_t id) {
