@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "tessera/scene.hpp"
 
 namespace tessera::cli {
@@ -13,6 +15,13 @@ namespace {
 struct Summary {
     double median = 0, min = 0, max = 0;
 };
+
+// The process's peak resident memory so far, in MiB.
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
 
 Summary summarize(std::vector<double> values) {
     std::sort(values.begin(), values.end());
@@ -46,12 +55,17 @@ int run_bench(const BenchCommand& cmd) {
                                {"resolve", &FrameStats::resolve_ms, {}},
                                {"tiles", &FrameStats::tiles_ms, {}}};
     std::vector<double> total;
+    total.reserve(std::size_t(cmd.frames));
+    for (Series& stage : stages) stage.samples.reserve(std::size_t(cmd.frames));
+    // Steady state allocates nothing: the peak after warm-up must not grow.
+    const double rss_after_warmup = peak_rss_mib();
     for (int i = 0; i < cmd.frames; ++i) {
         renderer.render(scene);
         const FrameStats& s = renderer.last_frame_stats();
         total.push_back(s.total_ms);
         for (Series& stage : stages) stage.samples.push_back(s.*stage.field);
     }
+    const double rss_peak = peak_rss_mib();
     const FrameStats& s = renderer.last_frame_stats();  // counts are the same every frame
     const Summary frame = summarize(total);
     const double light_count = double(std::max<std::size_t>(scene.lights.size(), 1));
@@ -71,10 +85,10 @@ int run_bench(const BenchCommand& cmd) {
             std::printf("%s\"%s\": %.3f", i ? ", " : "", stages[i].name, summarize(stages[i].samples).median);
         std::printf("}, \"triangles\": %llu, \"triangles_binned\": %llu, \"fragments_rasterized\": %llu, "
                     "\"fragments_shaded\": %llu, \"lights\": %zu, \"mfragments_per_s\": %.2f, "
-                    "\"ns_per_fragment_light\": %.3f}\n",
+                    "\"ns_per_fragment_light\": %.3f, \"peak_rss_mib\": %.1f, \"rss_growth_mib\": %.1f}\n",
                     (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                     (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded,
-                    scene.lights.size(), mfrag_per_s, ns_per_fragment_light);
+                    scene.lights.size(), mfrag_per_s, ns_per_fragment_light, rss_peak, rss_peak - rss_after_warmup);
         return 0;
     }
     std::printf("%s: %dx%d, %d threads, %s kernels, tile %d, %d frames after %d warm-up\n", cmd.scene_path.c_str(),
@@ -89,6 +103,7 @@ int run_bench(const BenchCommand& cmd) {
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded, scene.lights.size());
     std::printf("%.1f Mfragments/s shaded; %.2f ns per fragment-light (shading step, one thread)\n", mfrag_per_s,
                 ns_per_fragment_light);
+    std::printf("peak memory %.1f MiB; growth over the timed frames %.1f MiB\n", rss_peak, rss_peak - rss_after_warmup);
     return 0;
 }
 
