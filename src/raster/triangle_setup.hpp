@@ -13,13 +13,15 @@ namespace tessera::raster {
 // A triangle ready to rasterize, in image space: x right, y down, row 0 at
 // the top of the picture, pixel (i, j) centred at (i + 0.5, j + 0.5).
 struct RasterTriangle {
+    // What rasterization reads, first.
     std::array<std::int32_t, 3> x, y;   // corner positions, 24.8 fixed point
+    std::int32_t px_min = 0, px_max = 0, py_min = 0, py_max = 0;  // inclusive pixel box, clamped to the image
+    std::int64_t double_area = 0;       // edge function of corner 2 against edge 0→1, > 0
     std::array<float, 3> depth;         // window depth z_ndc·0.5 + 0.5, in [0, 1]
+    // What only the shading of visible pixels reads.
     std::array<float, 3> inv_w;         // 1 / clip w, for perspective correction
     std::array<std::uint32_t, 3> vertex;  // the corners' vertex references (see ShadedVertex)
     std::uint32_t material = 0;
-    std::int64_t double_area = 0;       // edge function of corner 2 against edge 0→1, > 0
-    std::int32_t px_min = 0, px_max = 0, py_min = 0, py_max = 0;  // inclusive pixel box, clamped to the image
 };
 
 using geometry::ScreenVertex;
