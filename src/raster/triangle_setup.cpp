@@ -8,19 +8,16 @@ namespace tessera::raster {
 
 namespace {
 
-// Smallest pixel index whose centre (i + 0.5, in fixed point) is >= v.
+// Pixel i's centre is i·256 + 128 in fixed point. C++20's >> on a negative
+// value is an arithmetic shift, i.e. floor division by 256.
+
+// Smallest pixel index whose centre is >= v: ceil((v - 128) / 256).
 std::int32_t first_centre_at_or_after(std::int32_t v) {
-    const std::int32_t half = kSubpixelScale / 2;
-    // ceil((v - half) / scale) with floor division for negatives.
-    const std::int32_t n = v - half + kSubpixelScale - 1;
-    return n >= 0 ? n / kSubpixelScale : -((-n + kSubpixelScale - 1) / kSubpixelScale);
+    return (v - kSubpixelScale / 2 + kSubpixelScale - 1) >> kSubpixelBits;
 }
 
-// Largest pixel index whose centre is <= v.
-std::int32_t last_centre_at_or_before(std::int32_t v) {
-    const std::int32_t n = v - kSubpixelScale / 2;
-    return n >= 0 ? n / kSubpixelScale : -((-n + kSubpixelScale - 1) / kSubpixelScale);
-}
+// Largest pixel index whose centre is <= v: floor((v - 128) / 256).
+std::int32_t last_centre_at_or_before(std::int32_t v) { return (v - kSubpixelScale / 2) >> kSubpixelBits; }
 
 // Tests every pixel centre in the triangle's box (meant for small boxes).
 bool covers_a_centre(const RasterTriangle& t) {
