@@ -45,3 +45,35 @@ TESSERA_DECLARE_RASTER_KERNEL(avx512)
 #undef TESSERA_DECLARE_RASTER_KERNEL
 
 }  // namespace tessera::raster
+
+namespace tessera::raster {
+
+// Triangle setup over a batch of accepted triangles (triangle_setup_simd.cpp):
+// the culling decisions and the integer results of setup_triangle(), a vector
+// of triangles at a time; the caller writes the records of those kept.
+inline constexpr int kSetupBatch = 64;  // triangles per call; a multiple of every lane count
+
+struct SetupBatchInput {
+    const std::int32_t* screen;  // the frame's ScreenVertex array seen as 4 int32 per vertex: x, y, (depth, inv_w)
+    std::int32_t ref[3][kSetupBatch];  // corner vertex references; lanes past count hold any valid reference
+    int count;
+    int width, height;  // viewport
+};
+
+enum SetupVerdict : std::int32_t { kSetupDropped = 0, kSetupKept = 1, kSetupScalar = 2 };
+
+struct SetupBatchOutput {
+    std::int32_t verdict[kSetupBatch];  // SetupVerdict; kSetupScalar: too large for int32, set up one by one
+    std::int32_t swapped[kSetupBatch];  // nonzero: corners 1 and 2 trade places
+    std::int32_t double_area[kSetupBatch];
+    std::int32_t px_min[kSetupBatch], px_max[kSetupBatch], py_min[kSetupBatch], py_max[kSetupBatch];
+};
+
+#define TESSERA_DECLARE_SETUP_KERNEL(suffix) \
+    void setup_batch_##suffix(const SetupBatchInput& in, SetupBatchOutput& out);
+TESSERA_DECLARE_SETUP_KERNEL(sse4)
+TESSERA_DECLARE_SETUP_KERNEL(avx2)
+TESSERA_DECLARE_SETUP_KERNEL(avx512)
+#undef TESSERA_DECLARE_SETUP_KERNEL
+
+}  // namespace tessera::raster

@@ -10,6 +10,7 @@
 #include "geometry/shaded_vertex.hpp"
 #include "geometry/viewport.hpp"
 #include "raster/triangle_setup.hpp"
+#include "simd/isa.hpp"
 
 namespace tessera::raster {
 
@@ -27,9 +28,11 @@ struct AssembledTriangles {
 };
 
 // Appends to `out` the triangles of `indices` (three per triangle, relative to
-// `first_vertex`) that survive culling, clipping and setup. Accepted triangles
-// use the precomputed screen vertices; clipped ones become fans.
-void assemble_triangles(std::span<const std::uint32_t> indices, std::uint32_t first_vertex, std::uint32_t material,
+// `first_vertex`) that survive culling, clipping and setup, in order. Accepted
+// triangles use the precomputed screen vertices and are set up a vector at a
+// time with the ISA's kernels (the same result as one by one); clipped ones
+// become fans.
+void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex, std::uint32_t material,
                         const FrameVertices& frame, const geometry::Viewport& viewport,
                         const geometry::GuardBand& guard, AssembledTriangles& out);
 

@@ -190,7 +190,7 @@ void Renderer::Frame::assemble_triangles(const Scene& scene) {
             scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
         chunk.assembled.clear();
         chunk.assembled.triangles.reserve(chunk.triangle_count);  // most triangles stay one triangle
-        raster::assemble_triangles(indices, first_vertex[chunk.object], object.material, frame, viewport, guard,
+        raster::assemble_triangles(isa, indices, first_vertex[chunk.object], object.material, frame, viewport, guard,
                                    chunk.assembled);
     });
     for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].assembled.triangles.size();
