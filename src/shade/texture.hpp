@@ -1,0 +1,163 @@
+// Textures for the textured PBR variant (reference/pbr_lighting.md, "Textured
+// variant"): an image with its full mip chain and OpenGL's sampling rules,
+// GL_LINEAR magnification and GL_LINEAR_MIPMAP_LINEAR minification, with
+// GL_REPEAT or GL_CLAMP_TO_EDGE wrapping. The scalar samplers are the reference
+// (texture.cpp); sample_trilinear(Isa, ...) runs the same arithmetic over
+// batches of fragments (texture_sampling_simd.cpp, one copy per ISA).
+//
+// Storage: every level is linear float RGBA, interleaved (r, g, b, a per texel),
+// all levels in one array. A bilinear tap then touches one 16-byte texel for
+// all four channels, so a 2×2 footprint is two cache lines at most; per-channel
+// planes would need four times as many lines for the same fetches.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "simd/isa.hpp"
+
+namespace tessera::shade {
+
+// How the stored values relate to light. sRGB data (albedo/base colour, 8-bit
+// images authored for display) is decoded to linear with the exact sRGB transfer
+// function, as GL does for GL_SRGB8_ALPHA8 textures: alpha stays linear. Linear
+// data (metallic, roughness, ao, normal maps, EXR) is kept as read.
+enum class ColorSpace { srgb, linear };
+
+// What happens outside [0, 1]: GL_REPEAT (the pattern tiles) or
+// GL_CLAMP_TO_EDGE (the edge texels extend).
+enum class Wrap { repeat, clamp_to_edge };
+
+// Loading or building a texture failed; the message names the file (or
+// "from_pixels") and what was wrong.
+class TextureError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// The exact sRGB decode (IEC 61966-2-1): c/12.92 up to 0.04045, else ((c + 0.055)/1.055)^2.4.
+float srgb_to_linear(float encoded);
+
+// One mip level: its size in texels and where its first texel is in Texture::texels().
+struct MipLevel {
+    int width = 0;
+    int height = 0;
+    std::size_t offset = 0;  // in texels (4 floats each)
+};
+
+// Up to 16384 per side: 15 levels.
+inline constexpr int kMaxTextureSize = 16384;
+inline constexpr int kMaxMipLevels = 15;
+
+// What the SIMD kernels read: plain pointers and per-level tables, no std::vector
+// (kernels compiled for a wider ISA must not instantiate code shared with the
+// baseline). Tables hold level_count entries.
+struct TextureView {
+    const float* texels = nullptr;  // interleaved RGBA, all levels
+    int level_count = 0;
+    const std::int32_t* width = nullptr;
+    const std::int32_t* height = nullptr;
+    const std::int32_t* offset = nullptr;  // in texels
+    const float* width_f = nullptr;
+    const float* height_f = nullptr;
+};
+
+// An image with a full mip chain, linear float RGBA.
+//
+// Level 0 is the source. Level n+1 has size max(1, floor(w/2)) × max(1, floor(h/2))
+// of level n (GL's rule), down to 1×1: floor(log2(max(w, h))) + 1 levels. Each
+// texel of level n+1 is the area-weighted box filter of the level-n texels its
+// footprint covers: with an even side that is the plain 2×2 average; with an odd
+// side (w = 2k+1 → k) a texel covers w/k > 2 parent texels, the partially covered
+// one weighted by its covered fraction (5 → 2: (t0 + t1 + ½·t2)/2.5). The filter
+// is separable, preserves the mean exactly (up to rounding), and is one of the
+// box filters glGenerateMipmap permits. Filtering happens on linear values.
+//
+// Channels: 1 = grey → (g, g, g, 1); 2 = grey + alpha → (g, g, g, a);
+// 3 = RGB → (r, g, b, 1); 4 = RGBA; more than 4: the first 4, the rest ignored.
+class Texture {
+public:
+    // Reads any format OpenImageIO reads (PNG, JPEG, TGA, EXR, ...), the first
+    // subimage. Throws TextureError for a missing or unreadable file, a truncated
+    // image, a zero size, or a side above kMaxTextureSize.
+    static Texture load(const std::filesystem::path& path, ColorSpace color_space);
+    // `pixels` holds width·height·channels floats, row-major, top row first,
+    // channels interleaved; in color_space (sRGB values are decoded as by load).
+    static Texture from_pixels(int width, int height, int channels, const float* pixels, ColorSpace color_space);
+
+    int width() const { return levels_.front().width; }
+    int height() const { return levels_.front().height; }
+    int level_count() const { return static_cast<int>(levels_.size()); }
+    const MipLevel& level(int index) const { return levels_.at(static_cast<std::size_t>(index)); }
+    const std::vector<float>& texels() const { return texels_; }
+
+    // Texel (x, y) of a level, no wrapping: 0 <= x < width, 0 <= y < height of that level.
+    glm::vec4 texel(int level, int x, int y) const;
+
+    // GL_LINEAR on one level. (u, v) in texture space: (0, 0) is the top-left
+    // corner of the image (its first row), (1, 1) the bottom-right; texel (i, j)
+    // has its centre at ((i + 0.5)/width, (j + 0.5)/height). NaN coordinates
+    // sample like -∞ (no out-of-range reads).
+    glm::vec4 sample_bilinear(int level, float u, float v, Wrap wrap) const;
+
+    // GL_LINEAR_MIPMAP_LINEAR for lod > 0, GL_LINEAR on level 0 for lod <= 0
+    // (magnification). lod is clamped to [0, level_count − 1] (NaN → 0); the
+    // result blends levels floor(lod) and floor(lod) + 1 by frac(lod).
+    glm::vec4 sample_trilinear(glm::vec2 uv, float lod, Wrap wrap) const;
+
+    // The kernels' view of this texture; valid while the texture lives and is not moved.
+    TextureView view() const;
+
+private:
+    Texture() = default;
+    void build_mip_chain();  // from level 0 in texels_
+
+    std::vector<MipLevel> levels_;
+    std::vector<float> texels_;  // all levels, RGBA
+    // The per-level tables of TextureView.
+    std::array<std::int32_t, kMaxMipLevels> width_table_{};
+    std::array<std::int32_t, kMaxMipLevels> height_table_{};
+    std::array<std::int32_t, kMaxMipLevels> offset_table_{};
+    std::array<float, kMaxMipLevels> width_f_table_{};
+    std::array<float, kMaxMipLevels> height_f_table_{};
+};
+
+// The level of detail λ = log2(ρ) of the GL spec (§8.14.1, the non-approximated
+// scale factor): ρ = max(|∂(uv·size)/∂x|, |∂(uv·size)/∂y|), the longer of the
+// two screen-space steps measured in level-0 texels. Derivatives are of (u, v)
+// per pixel; width, height of level 0. ρ = 0 gives -∞ (magnification).
+float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int width, int height);
+
+// Fragments to sample in SoA form. All pointers address at least
+// padded_count(count) floats (shade_kernels.hpp: kernels run whole vectors past
+// count). Any values in those extra lanes are safe: indices are clamped.
+struct TexCoordInputs {
+    std::size_t count = 0;
+    const float* u = nullptr;
+    const float* v = nullptr;
+    const float* lod = nullptr;  // as for Texture::sample_trilinear
+};
+
+// Sampled linear RGBA, one array per channel, padded like the inputs.
+struct TexelOutputs {
+    float* r = nullptr;
+    float* g = nullptr;
+    float* b = nullptr;
+    float* a = nullptr;
+};
+
+// out[i] = texture.sample_trilinear({u[i], v[i]}, lod[i], wrap) for i < in.count.
+// The SIMD ISAs run the scalar sampler's operations in the same order, without
+// FMA contraction, so they return the same floats (tests/shade/test_texture.cpp
+// checks |simd − scalar| <= 1e-5 for texels in [0, 1]; it measures 0).
+void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const TexCoordInputs& in,
+                      const TexelOutputs& out);
+
+}  // namespace tessera::shade

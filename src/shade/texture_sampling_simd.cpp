@@ -1,0 +1,139 @@
+// Texture::sample_trilinear (texture.cpp) over xsimd batches: one fragment per
+// lane, each lane with its own level pair, so the per-level sizes and offsets
+// are gathered from the TextureView tables and the texels by `batch::gather`
+// (vgatherdps on AVX2/AVX-512; xsimd 8.1 loads lane by lane on SSE4.2).
+// Compiled once per ISA like shade_kernels_simd.cpp; entry points carry
+// TESSERA_SIMD_SUFFIX, everything else is in an anonymous namespace.
+//
+// Same steps, same order and same names as the scalar reference, and built with
+// -ffp-contract=off (src/shade/CMakeLists.txt): an FMA in x = u·size − ½ would
+// move the bilinear weight by up to half an ulp of u·size (3e-5 on a 512-texel
+// side). So the results equal the scalar sampler's; the test allows 1e-5.
+#include <cstddef>
+#include <cstdint>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#include <xsimd/xsimd.hpp>
+#pragma GCC diagnostic pop
+
+#include "shade/shade_kernels.hpp"
+#include "shade/texture.hpp"
+
+#if !defined(TESSERA_SIMD_ARCH) || !defined(TESSERA_SIMD_SUFFIX)
+#error "build texture_sampling_simd.cpp with tessera_add_simd_kernels(): it defines TESSERA_SIMD_ARCH/_SUFFIX"
+#endif
+
+#define TESSERA_SIMD_PASTE_(name, suffix) name##_##suffix
+#define TESSERA_SIMD_PASTE(name, suffix) TESSERA_SIMD_PASTE_(name, suffix)
+#define TESSERA_SIMD_ENTRY(name) TESSERA_SIMD_PASTE(name, TESSERA_SIMD_SUFFIX)
+
+namespace tessera::shade {
+namespace {
+
+using Arch = TESSERA_SIMD_ARCH;
+using Batch = xsimd::batch<float, Arch>;
+using IntBatch = xsimd::batch<std::int32_t, Arch>;
+static_assert(kLanePadding % Batch::size == 0, "padding must hold whole vectors");
+static_assert(IntBatch::size == Batch::size, "one int32 index per float lane");
+
+struct Rgba {
+    Batch r, g, b, a;
+};
+
+Rgba lerp(const Rgba& t0, const Rgba& t1, const Batch& weight) {
+    const Batch keep = Batch(1.0f) - weight;
+    return {keep * t0.r + weight * t1.r, keep * t0.g + weight * t1.g, keep * t0.b + weight * t1.b,
+            keep * t0.a + weight * t1.a};
+}
+
+// min(max(x, lo), hi): the hardware max returns its second operand for NaN, so NaN → lo.
+Batch clamp_nan_low(const Batch& x, const Batch& lo, const Batch& hi) { return xsimd::min(xsimd::max(x, lo), hi); }
+
+// Per-lane level parameters, gathered from the TextureView tables.
+struct LevelLanes {
+    IntBatch width, height, offset;
+    Batch width_f, height_f;
+};
+
+// Usually every lane of a batch is on the same level (lod varies slowly over a
+// tile): then the parameters are broadcast, saving five gathers.
+LevelLanes level_lanes(const TextureView& texture, const IntBatch& level) {
+    const std::int32_t first = level.get(0);
+    if (xsimd::all(level == IntBatch(first)))
+        return {IntBatch(texture.width[first]), IntBatch(texture.height[first]), IntBatch(texture.offset[first]),
+                Batch(texture.width_f[first]), Batch(texture.height_f[first])};
+    return {IntBatch::gather(texture.width, level), IntBatch::gather(texture.height, level),
+            IntBatch::gather(texture.offset, level), Batch::gather(texture.width_f, level),
+            Batch::gather(texture.height_f, level)};
+}
+
+struct AxisTaps {
+    IntBatch i0, i1;
+    Batch alpha;
+};
+
+// axis_taps of texture.cpp: x = coord·size − ½, i0 = wrap(⌊x⌋), i1 = wrap(⌊x⌋ + 1), α = frac(x).
+AxisTaps axis_taps(Batch coord, const IntBatch& size, const Batch& size_f, Wrap wrap) {
+    if (wrap == Wrap::repeat) coord -= xsimd::floor(coord);
+    const Batch x = clamp_nan_low(coord * size_f - Batch(0.5f), Batch(-1.0f), size_f);
+    const Batch x_floor = xsimd::floor(x);
+    const IntBatch i0 = xsimd::to_int(x_floor);  // exact: x_floor is a small integer
+    const IntBatch i1 = i0 + IntBatch(1);
+    const IntBatch zero(0);
+    const IntBatch last = size - IntBatch(1);
+    if (wrap == Wrap::repeat)
+        return {xsimd::select(i0 < zero, i0 + size, i0), xsimd::select(i1 > last, i1 - size, i1), x - x_floor};
+    return {xsimd::select(i0 < zero, zero, xsimd::select(i0 > last, last, i0)),
+            xsimd::select(i1 < zero, zero, xsimd::select(i1 > last, last, i1)), x - x_floor};
+}
+
+// Texel RGBA at texel index `index` (interleaved: the four channels at 4·index + c).
+Rgba fetch(const float* texels, const IntBatch& index) {
+    const IntBatch base = index * IntBatch(4);
+    return {Batch::gather(texels, base), Batch::gather(texels + 1, base), Batch::gather(texels + 2, base),
+            Batch::gather(texels + 3, base)};
+}
+
+Rgba sample_bilinear(const TextureView& texture, const IntBatch& level, const Batch& u, const Batch& v, Wrap wrap) {
+    const LevelLanes l = level_lanes(texture, level);
+    const AxisTaps x = axis_taps(u, l.width, l.width_f, wrap);
+    const AxisTaps y = axis_taps(v, l.height, l.height_f, wrap);
+    const IntBatch row0 = l.offset + y.i0 * l.width;
+    const IntBatch row1 = l.offset + y.i1 * l.width;
+    const Rgba top = lerp(fetch(texture.texels, row0 + x.i0), fetch(texture.texels, row0 + x.i1), x.alpha);
+    const Rgba bottom = lerp(fetch(texture.texels, row1 + x.i0), fetch(texture.texels, row1 + x.i1), x.alpha);
+    return lerp(top, bottom, y.alpha);
+}
+
+void sample_trilinear_batch(const TextureView& texture, Wrap wrap, const TexCoordInputs& in, std::size_t i,
+                            const TexelOutputs& out) {
+    const Batch u = xsimd::load_unaligned(in.u + i);
+    const Batch v = xsimd::load_unaligned(in.v + i);
+    const Batch max_level(static_cast<float>(texture.level_count - 1));
+    const Batch clamped = clamp_nan_low(xsimd::load_unaligned(in.lod + i), Batch(0.0f), max_level);
+    const Batch level_floor = xsimd::floor(clamped);
+    const Batch blend = clamped - level_floor;  // 0 when magnifying: level 0 alone
+    const IntBatch level0 = xsimd::to_int(level_floor);
+    const IntBatch level1 = xsimd::min(level0 + IntBatch(1), IntBatch(texture.level_count - 1));
+
+    const Rgba s0 = sample_bilinear(texture, level0, u, v, wrap);
+    Rgba result = s0;
+    // The scalar sampler skips level1 when blend is 0 for a lane; skip it here only when it is 0 for all.
+    if (xsimd::any(blend != Batch(0.0f))) result = lerp(s0, sample_bilinear(texture, level1, u, v, wrap), blend);
+    result.r.store_unaligned(out.r + i);
+    result.g.store_unaligned(out.g + i);
+    result.b.store_unaligned(out.b + i);
+    result.a.store_unaligned(out.a + i);
+}
+
+}  // namespace
+
+// Entry point, declared in texture.cpp.
+void TESSERA_SIMD_ENTRY(sample_trilinear)(const TextureView& texture, Wrap wrap, const TexCoordInputs& in,
+                                          const TexelOutputs& out) {
+    const std::size_t end = padded_count(in.count);
+    for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch(texture, wrap, in, i, out);
+}
+
+}  // namespace tessera::shade
