@@ -21,6 +21,7 @@
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
+#include "render/huge_pages.hpp"
 #include "shade/shade_kernels.hpp"
 #include "shade/surface_gather.hpp"
 
@@ -143,6 +144,9 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
         stats.triangles_in += scene.meshes[scene.objects[o].mesh].indices.size() / 3;
     }
     if (total >= geometry::kClippedVertexBit) throw std::invalid_argument("the scene has too many vertices");
+    render::reserve_huge(vertices, total);
+    render::reserve_huge(outcodes, total);
+    render::reserve_huge(screen, total);
     vertices.resize(total);
     outcodes.resize(total);
     screen.resize(total);
@@ -189,7 +193,7 @@ void Renderer::Frame::assemble_triangles(const Scene& scene) {
         const std::span<const std::uint32_t> indices(
             scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
         chunk.assembled.clear();
-        chunk.assembled.triangles.reserve(chunk.triangle_count);  // most triangles stay one triangle
+        render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object], object.material, frame, viewport, guard,
                                    chunk.assembled);
     });
@@ -206,8 +210,13 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     image.width = scene.width;
     image.height = scene.height;
     const std::size_t pixels = std::size_t(scene.width) * scene.height;
-    if (settings.keep_radiance) image.radiance.resize(3 * pixels);
-    else image.radiance.clear();
+    if (settings.keep_radiance) {
+        render::reserve_huge(image.radiance, 3 * pixels);
+        image.radiance.resize(3 * pixels);
+    } else {
+        image.radiance.clear();
+    }
+    render::reserve_huge(image.display, 3 * pixels);
     image.display.resize(3 * pixels);
     lights.assign(scene.camera.position, scene.lights);
     for (TileScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
