@@ -15,8 +15,9 @@ namespace tessera::geometry {
 // under non-uniform scale (the reference's comment on mat3(model)).
 glm::mat3 normal_matrix(const glm::mat4& model);
 
-// Transforms `mesh` placed by `model` into `out` (out.size() == mesh vertex count).
-void shade_vertices(const Mesh& mesh, const glm::mat4& model, const glm::mat4& view_projection,
+// Transforms the mesh's vertices [first, first + out.size()), placed by
+// `model`, into `out`.
+void shade_vertices(const Mesh& mesh, std::size_t first, const glm::mat4& model, const glm::mat4& view_projection,
                     std::span<ShadedVertex> out);
 
 }  // namespace tessera::geometry

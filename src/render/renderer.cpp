@@ -154,16 +154,21 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
         projection_matrix(scene.camera, scene.width, scene.height) * view_matrix(scene.camera);
     const geometry::GuardBand guard(scene.width, scene.height);
     const geometry::Viewport viewport{scene.width, scene.height};
+    // In runs of vertices, so that one large mesh spreads over every thread too.
+    constexpr std::size_t kRun = 4096;
     tbb::parallel_for(std::size_t(0), scene.objects.size(), [&](std::size_t o) {
         const Object& object = scene.objects[o];
         const Mesh& mesh = scene.meshes[object.mesh];
-        const std::span<geometry::ShadedVertex> out(vertices.data() + first_vertex[o], mesh.positions.size());
-        geometry::shade_vertices(mesh, object.model, view_projection, out);
-        for (std::size_t i = 0, v = first_vertex[o]; i < out.size(); ++i, ++v) {
-            outcodes[v] = geometry::outcode(out[i].clip_pos, guard);
-            // The viewport transform, once per vertex rather than once per triangle corner.
-            if (!(outcodes[v] & geometry::kClipPlaneBits)) screen[v] = geometry::to_screen(out[i].clip_pos, viewport);
-        }
+        tbb::parallel_for(std::size_t(0), mesh.positions.size(), kRun, [&](std::size_t first) {
+            const std::size_t count = std::min(kRun, mesh.positions.size() - first);
+            const std::size_t base = first_vertex[o] + first;
+            geometry::shade_vertices(mesh, first, object.model, view_projection, {vertices.data() + base, count});
+            for (std::size_t v = base; v < base + count; ++v) {
+                outcodes[v] = geometry::outcode(vertices[v].clip_pos, guard);
+                // The viewport transform, once per vertex rather than once per triangle corner.
+                if (!(outcodes[v] & geometry::kClipPlaneBits)) screen[v] = geometry::to_screen(vertices[v].clip_pos, viewport);
+            }
+        });
     });
 }
 

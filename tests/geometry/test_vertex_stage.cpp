@@ -24,7 +24,7 @@ TEST_CASE("shade_vertices computes WorldPos, clip position and normal as the ref
     const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0));
     const glm::mat4 view_projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.1f, 100.0f);
     geometry::ShadedVertex out;
-    geometry::shade_vertices(mesh, model, view_projection, {&out, 1});
+    geometry::shade_vertices(mesh, 0, model, view_projection, {&out, 1});
     CHECK(out.world_pos.x == doctest::Approx(11.0f));
     CHECK(out.world_pos.y == doctest::Approx(2.0f));
     const glm::vec4 expected = view_projection * glm::vec4(11, 2, 3, 1);
