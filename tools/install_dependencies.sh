@@ -8,6 +8,8 @@ packages=(
   doctest-dev libtomlplusplus-dev libcli11-dev libbenchmark-dev
   # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+  # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

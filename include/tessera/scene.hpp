@@ -15,6 +15,7 @@ namespace tessera {
 
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
+inline constexpr long long kMaxImagePixels = 1LL << 27;  // width × height: 134M pixels, ~2 GB of frame at 15 B/pixel
 
 // The reference shader's material inputs (untextured demo).
 struct Material {

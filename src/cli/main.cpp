@@ -2,50 +2,131 @@
 // every error into one line on stderr and a non-zero exit status.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/bench_command.hpp"
+#include "scene/scene_validation.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 
 namespace {
 
+constexpr std::string_view kScenePlaceholder = "{scene}";
+
 struct RenderCommand {
-    std::string scene_path;
-    std::vector<std::string> outputs;
-    int width = 0;   // 0: the scene's own
+    std::vector<std::string> scene_paths;
+    std::vector<std::string> outputs;  // may hold {scene}, replaced by each scene file's stem
+    int width = 0;                     // 0: the scene's own
     int height = 0;
     bool stats = false;
     tessera::RenderSettings settings;
 };
 
-int run_render(const RenderCommand& cmd) {
+// `pattern` with every {scene} replaced by the scene file's stem.
+std::string output_path_for(std::string pattern, const std::string& scene_path) {
+    const std::string stem = std::filesystem::path(scene_path).stem().string();
+    for (std::size_t at = pattern.find(kScenePlaceholder); at != std::string::npos;
+         at = pattern.find(kScenePlaceholder, at + stem.size())) {
+        pattern.replace(at, kScenePlaceholder.size(), stem);
+    }
+    return pattern;
+}
+
+// Mistakes in the command itself, found before any scene is rendered.
+void check_render_command(const RenderCommand& cmd) {
     for (const std::string& out : cmd.outputs)
         if (!tessera::is_supported_image_path(out))
             throw tessera::ImageError(out + ": unsupported output format (expected .png or .exr)");
+    if (cmd.scene_paths.size() < 2) return;
+    for (const std::string& out : cmd.outputs) {
+        if (out.find(kScenePlaceholder) == std::string::npos)
+            throw std::invalid_argument("with several scenes every -o must contain {scene} (the scene file's stem), "
+                                        "got '" + out + "'");
+    }
+    std::set<std::string> stems;
+    for (const std::string& path : cmd.scene_paths) {
+        const std::string stem = std::filesystem::path(path).stem().string();
+        if (!stems.insert(stem).second)
+            throw std::invalid_argument("two scene files have the stem '" + stem +
+                                        "': their outputs would overwrite each other");
+    }
+}
 
-    tessera::Scene scene = tessera::load_scene_file(cmd.scene_path);
+void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage& image) {
+    const tessera::FrameStats& s = renderer.last_frame_stats();
+    std::printf("%dx%d, %d threads, %s kernels: %.2f ms (vertex %.2f, clip+setup %.2f, binning %.2f, tiles %.2f)\n",
+                image.width, image.height, renderer.threads(), renderer.isa_name().c_str(), s.total_ms, s.vertex_ms,
+                s.clip_setup_ms, s.binning_ms, s.tiles_ms);
+    std::printf("triangles in %llu, binned %llu; fragments rasterized %llu, shaded %llu\n",
+                (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
+                (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);
+}
+
+// Renders one scene to every output; throws on the first error before the
+// render, and after it tries every output and throws if any write failed.
+void render_scene(const RenderCommand& cmd, const std::string& scene_path, tessera::Renderer& renderer) {
+    tessera::Scene scene = tessera::load_scene_file(scene_path);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
-
-    tessera::Renderer renderer(cmd.settings);
-    const tessera::RenderedImage& image = renderer.render(scene);  // once, whatever the number of outputs
-    for (const std::string& out : cmd.outputs) tessera::write_image(image, out);
-
-    if (cmd.stats) {
-        const tessera::FrameStats& s = renderer.last_frame_stats();
-        std::printf("%dx%d, %d threads, %s kernels: %.2f ms (vertex %.2f, clip+setup %.2f, binning %.2f, tiles %.2f)\n",
-                    image.width, image.height, renderer.threads(), renderer.isa_name().c_str(), s.total_ms, s.vertex_ms,
-                    s.clip_setup_ms, s.binning_ms, s.tiles_ms);
-        std::printf("triangles in %llu, binned %llu; fragments rasterized %llu, shaded %llu\n",
-                    (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
-                    (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);
+    if ((cmd.width > 0 || cmd.height > 0) &&
+        static_cast<long long>(scene.width) * scene.height > tessera::kMaxImagePixels) {
+        throw std::invalid_argument(scene_path + ": image size " + std::to_string(scene.width) + "x" +
+                                    std::to_string(scene.height) + " (after --width/--height) is " +
+                                    std::to_string(static_cast<long long>(scene.width) * scene.height) +
+                                    " pixels; at most " + std::to_string(tessera::kMaxImagePixels) + " are allowed");
     }
-    return 0;
+    tessera::validate_scene(scene);  // the renderer trusts its input
+
+    const tessera::RenderedImage& image = renderer.render(scene);  // once, whatever the number of outputs
+    std::string pending_error;
+    for (const std::string& pattern : cmd.outputs) {
+        try {
+            tessera::write_image(image, output_path_for(pattern, scene_path));
+        } catch (const std::exception& e) {
+            if (!pending_error.empty()) std::fprintf(stderr, "tessera: error: %s\n", pending_error.c_str());
+            pending_error = e.what();
+        }
+    }
+    if (!pending_error.empty()) throw tessera::ImageError(pending_error);
+    if (cmd.stats) print_stats(renderer, image);
+}
+
+// One failing scene does not stop the others; the exit status says whether any failed.
+int run_render(const RenderCommand& cmd) {
+    check_render_command(cmd);
+    tessera::RenderSettings settings = cmd.settings;
+    // The HDR radiance image costs memory bandwidth: keep it only for EXR output.
+    settings.keep_radiance = false;
+    for (const std::string& out : cmd.outputs)
+        if (std::filesystem::path(out).extension() == ".exr" || std::filesystem::path(out).extension() == ".EXR")
+            settings.keep_radiance = true;
+    tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from scene to scene
+    std::vector<std::string> failed;
+    for (const std::string& scene_path : cmd.scene_paths) {
+        try {
+            render_scene(cmd, scene_path, renderer);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "tessera: error: %s\n", e.what());
+            failed.push_back(scene_path);
+        }
+    }
+    if (cmd.scene_paths.size() > 1) {
+        const std::size_t rendered = cmd.scene_paths.size() - failed.size();
+        std::string summary = "rendered " + std::to_string(rendered) + " of " +
+                              std::to_string(cmd.scene_paths.size()) + " scenes";
+        for (std::size_t i = 0; i < failed.size(); ++i) summary += (i == 0 ? "; failed: " : ", ") + failed[i];
+        std::fprintf(failed.empty() ? stdout : stderr, "%s%s\n", failed.empty() ? "" : "tessera: error: ",
+                     summary.c_str());
+    }
+    return failed.empty() ? 0 : 1;
 }
 
 }  // namespace
@@ -56,11 +137,13 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     RenderCommand render;
-    CLI::App* render_app = app.add_subcommand("render", "Render a scene file to one or more images");
-    render_app->add_option("scene", render.scene_path, "Scene file (TOML)")->required();
+    CLI::App* render_app = app.add_subcommand("render", "Render scene files to one or more images each");
+    render_app->add_option("scene", render.scene_paths, "Scene files (TOML); one failing does not stop the others")
+        ->required();
     render_app->add_option("-o,--output", render.outputs,
                            "Output image; .png is display-referred 8-bit, .exr is scene-linear HDR (repeatable: one "
-                           "render, several files)")
+                           "render, several files); {scene} stands for the scene file's stem and is required "
+                           "with several scenes")
         ->required();
     render_app->add_option("--width", render.width, "Override the scene's image width in pixels")
         ->check(CLI::Range(1, tessera::kMaxImageDimension));
@@ -86,6 +169,7 @@ int main(int argc, char** argv) {
     bench_app->add_option("--tile-size", bench.settings.tile_size, "Screen tile side in pixels");
     bench_app->add_option("--isa", bench.settings.isa, "Shading kernels: auto, scalar, sse4, avx2, avx512");
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
+    bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
 
     try {
         app.parse(argc, argv);

@@ -6,6 +6,7 @@
 //   [output]                        # optional table
 //   width = 1280                    # integer in 1..kMaxImageDimension; default 1280
 //   height = 720                    # integer in 1..kMaxImageDimension; default 720
+//                                   # and width · height <= kMaxImagePixels (2^27)
 //   clear_color = [0.1, 0.1, 0.1]   # display-referred RGB, each in [0, 1]; default (0.1, 0.1, 0.1)
 //
 //   [camera]                        # required table
@@ -255,6 +256,15 @@ private:
         check_keys(output, "output", {"width", "height", "clear_color"});
         if (const toml::node* n = output.get("width")) scene.width = read_dimension(*n, "output.width");
         if (const toml::node* n = output.get("height")) scene.height = read_dimension(*n, "output.height");
+        // 16384 per side is allowed, but not both at once: the frame would need ~4 GB.
+        const long long pixels = static_cast<long long>(scene.width) * scene.height;
+        if (pixels > kMaxImagePixels) {
+            const toml::node* at = output.get("height") != nullptr ? output.get("height") : output.get("width");
+            fail_at(at != nullptr ? at->source() : output.source(),
+                    "output size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + " is " +
+                        std::to_string(pixels) + " pixels; at most " + std::to_string(kMaxImagePixels) +
+                        " are allowed");
+        }
         if (const toml::node* n = output.get("clear_color")) {
             scene.clear_color = read_vec3(*n, "output.clear_color", kUnitInterval);
         }

@@ -1,0 +1,137 @@
+#include "scene/scene_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <string>
+
+namespace tessera {
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool in_unit_interval(float x) { return x >= 0.0f && x <= 1.0f; }  // false for NaN
+
+template <typename... Parts>
+[[noreturn]] void fail(const Scene& scene, const Parts&... parts) {
+    std::ostringstream message;
+    message << (scene.source.empty() ? std::string("scene") : scene.source) << ": ";
+    (message << ... << parts);
+    throw SceneError(message.str());
+}
+
+std::string mesh_label(const Scene& scene, std::size_t m) {
+    const std::string& name = scene.meshes[m].name;
+    return "mesh " + (name.empty() ? std::string() : "'" + name + "' ") + "(meshes[" + std::to_string(m) + "])";
+}
+
+void validate_size(const Scene& scene) {
+    if (scene.width < 1 || scene.width > kMaxImageDimension || scene.height < 1 ||
+        scene.height > kMaxImageDimension) {
+        fail(scene, "image size ", scene.width, "x", scene.height, " is outside 1..", kMaxImageDimension,
+             " pixels per side");
+    }
+    const long long pixels = static_cast<long long>(scene.width) * scene.height;
+    if (pixels > kMaxImagePixels) {
+        fail(scene, "image size ", scene.width, "x", scene.height, " is ", pixels, " pixels; at most ",
+             kMaxImagePixels, " are allowed");
+    }
+}
+
+void validate_camera(const Scene& scene) {
+    const Camera& c = scene.camera;
+    if (!finite(c.position) || !finite(c.target) || !finite(c.up)) {
+        fail(scene, "camera position, target and up must be finite");
+    }
+    if (!(c.fov_y_degrees > 0.0f && c.fov_y_degrees < 180.0f)) {
+        fail(scene, "camera fov_y must be in (0, 180) degrees, got ", c.fov_y_degrees);
+    }
+    if (!(c.near_plane > 0.0f && c.near_plane < c.far_plane && std::isfinite(c.far_plane))) {
+        fail(scene, "camera planes must satisfy 0 < near < far, got near = ", c.near_plane, ", far = ", c.far_plane);
+    }
+    // The same tolerances as the scene file reader.
+    const glm::vec3 forward = c.target - c.position;
+    const float scale = std::max({1.0f, glm::length(c.position), glm::length(c.target)});
+    if (!(glm::length(forward) > 1e-6f * scale)) fail(scene, "camera target must differ from its position");
+    const float up_length = glm::length(c.up);
+    const float sine =
+        up_length > 0.0f ? glm::length(glm::cross(glm::normalize(forward), c.up / up_length)) : 0.0f;
+    if (!(sine > 1e-5f)) fail(scene, "camera up must be non-zero and not parallel to the view direction");
+}
+
+void validate_lights_and_materials(const Scene& scene) {
+    const glm::vec3 cc = scene.clear_color;
+    if (!(in_unit_interval(cc.x) && in_unit_interval(cc.y) && in_unit_interval(cc.z))) {
+        fail(scene, "clear colour components must be in [0, 1]");
+    }
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const PointLight& light = scene.lights[i];
+        if (!finite(light.position) || !finite(light.color) || light.color.x < 0.0f || light.color.y < 0.0f ||
+            light.color.z < 0.0f) {
+            fail(scene, "lights[", i, "] must have a finite position and a finite colour >= 0");
+        }
+    }
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        if (!(in_unit_interval(m.albedo.x) && in_unit_interval(m.albedo.y) && in_unit_interval(m.albedo.z) &&
+              in_unit_interval(m.metallic) && in_unit_interval(m.roughness) && in_unit_interval(m.ao))) {
+            fail(scene, "materials[", i, "]: albedo, metallic, roughness and ao must be in [0, 1]");
+        }
+    }
+}
+
+void validate_meshes(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        const std::size_t vertices = mesh.positions.size();
+        if (mesh.normals.size() != vertices) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.normals.size(), " normals for ", vertices,
+                 " positions");
+        }
+        if (!mesh.uvs.empty() && mesh.uvs.size() != vertices) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.uvs.size(), " uvs for ", vertices, " positions");
+        }
+        if (mesh.indices.size() % 3 != 0) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.indices.size(),
+                 " indices, not a multiple of 3 (three per triangle)");
+        }
+        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+            if (mesh.indices[i] >= vertices) {
+                fail(scene, mesh_label(scene, m), ": index ", mesh.indices[i], " at indices[", i,
+                     "] (triangle ", i / 3, ") is out of range; the mesh has ", vertices, " vertices");
+            }
+        }
+    }
+}
+
+void validate_objects(const Scene& scene) {
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (object.mesh >= scene.meshes.size()) {
+            fail(scene, "objects[", o, "] uses mesh ", object.mesh, " but the scene has ", scene.meshes.size(),
+                 " meshes");
+        }
+        if (object.material >= scene.materials.size()) {
+            fail(scene, "objects[", o, "] uses material ", object.material, " but the scene has ",
+                 scene.materials.size(), " materials");
+        }
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) {
+                if (!std::isfinite(object.model[c][r])) fail(scene, "objects[", o, "] has a non-finite model matrix");
+            }
+        }
+    }
+}
+
+}  // namespace
+
+void validate_scene(const Scene& scene) {
+    validate_size(scene);
+    validate_camera(scene);
+    validate_lights_and_materials(scene);
+    validate_meshes(scene);
+    validate_objects(scene);
+}
+
+}  // namespace tessera

@@ -1,0 +1,144 @@
+// The table of bad scene files shared by the parser test (parse_scene in
+// process) and the command-line test (the tessera binary on a file): each row
+// is a scene text and what its error message must contain. "@" in `expected`
+// stands for the file name, so rows can pin the line and column ("@:3:9:").
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+namespace tessera::test {
+
+struct BadScene {
+    const char* name;  // also the file stem in the CLI test
+    std::string_view text;
+    std::vector<std::string_view> expected;  // substrings of the error message
+};
+
+// A camera that passes validation, on lines 1-3.
+#define TESSERA_CAMERA "[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 0]\n"
+
+inline const std::vector<BadScene>& bad_scenes() {
+    static const std::vector<BadScene> rows = {
+        // Malformed TOML: toml++'s description with file:line:column.
+        {"unclosed_table_header", "[camera\nposition = [0, 0, 5]\n", {"@:1:"}},
+        {"unclosed_array", TESSERA_CAMERA "up = [0, 1, 0\n[output]\n", {"@:5:1:", "expected comma or closing ']'"}},
+        {"missing_value", TESSERA_CAMERA "fov_y =\n", {"@:4:"}},
+        {"duplicate_key", TESSERA_CAMERA "target = [1, 0, 0]\n", {"@:4:"}},
+        {"bare_word_value", TESSERA_CAMERA "fov_y = wide\n", {"@:4:"}},
+        {"binary_garbage", std::string_view("\x00\xff\xfe[[\x01", 6), {"@:1:"}},
+        {"invalid_utf8_string", TESSERA_CAMERA "[materials.a]\nalbedo = \"\xc3\x28\"\n", {"@:5:"}},
+        // Wrong value types.
+        {"width_is_string", TESSERA_CAMERA "[output]\nwidth = \"big\"\n",
+         {"@:5:9:", "expected an integer for 'output.width', got string"}},
+        {"width_is_float", TESSERA_CAMERA "[output]\nwidth = 640.0\n",
+         {"@:5:9:", "expected an integer for 'output.width', got floating-point"}},
+        {"position_is_string", "[camera]\nposition = \"here\"\ntarget = [0, 0, 0]\n",
+         {"@:2:12:", "expected an array of 3 numbers for 'camera.position', got string"}},
+        {"position_has_two_elements", "[camera]\nposition = [0, 5]\ntarget = [0, 0, 0]\n",
+         {"@:2:", "expected an array of 3 numbers for 'camera.position', got 2 elements"}},
+        {"fov_is_boolean", TESSERA_CAMERA "fov_y = true\n", {"@:4:9:", "expected a number for 'camera.fov_y', got boolean"}},
+        {"camera_is_number", "camera = 5\n", {"@:1:", "expected a table for 'camera', got integer"}},
+        {"objects_is_table", TESSERA_CAMERA "[objects]\nmesh = \"sphere\"\n",
+         {"expected an array of tables for 'objects', got table"}},
+        {"mesh_is_number", TESSERA_CAMERA "[[objects]]\nmesh = 1\n",
+         {"@:5:8:", "expected a string for 'objects[0].mesh', got integer"}},
+        {"material_is_number", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nmaterial = 3\n",
+         {"@:6:", "expected a material name or an inline material table for 'objects[0].material'"}},
+        {"scale_is_string", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nscale = \"big\"\n",
+         {"@:6:", "expected a number or an array of 3 numbers for 'objects[0].scale', got string"}},
+        {"light_color_element_is_string", TESSERA_CAMERA "[[lights]]\nposition = [0, 0, 0]\ncolor = [1, \"x\", 1]\n",
+         {"@:6:", "expected a number for 'lights[0].color[1]', got string"}},
+        // Missing required keys.
+        {"no_camera", "[output]\nwidth = 64\n", {"@: missing required table [camera]"}},
+        {"empty_file", "", {"@: missing required table [camera]"}},
+        {"no_camera_position", "[camera]\ntarget = [0, 0, 0]\n", {"@:1:1:", "missing required key 'camera.position'"}},
+        {"no_camera_target", "[camera]\nposition = [0, 0, 5]\n", {"@:1:1:", "missing required key 'camera.target'"}},
+        {"light_without_position", TESSERA_CAMERA "[[lights]]\ncolor = [1, 1, 1]\n",
+         {"@:4:", "missing required key 'lights[0].position'"}},
+        {"light_without_color", TESSERA_CAMERA "[[lights]]\nposition = [1, 1, 1]\n",
+         {"@:4:", "missing required key 'lights[0].color'"}},
+        {"object_without_mesh", TESSERA_CAMERA "[[objects]]\ntranslate = [0, 0, 0]\n",
+         {"@:4:", "missing required key 'objects[0].mesh'"}},
+        // Unknown keys are errors: a typo must not pass silently.
+        {"unknown_top_level_table", TESSERA_CAMERA "[outptu]\nwidth = 64\n",
+         {"@:4:", "unknown key 'outptu' at top level", "valid keys: output, camera"}},
+        {"unknown_camera_key", TESSERA_CAMERA "fov = 60\n", {"@:4:1:", "unknown key 'fov' in 'camera'"}},
+        {"unknown_output_key", TESSERA_CAMERA "[output]\nwidht = 64\n", {"@:5:1:", "unknown key 'widht' in 'output'"}},
+        {"unknown_object_key", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nrotation = [0, 1, 0]\n",
+         {"@:6:1:", "unknown key 'rotation' in 'objects[0]'"}},
+        {"unknown_material_key", TESSERA_CAMERA "[materials.a]\nroughnes = 0.5\n",
+         {"@:5:1:", "unknown key 'roughnes' in 'materials.a'"}},
+        {"unknown_light_key", TESSERA_CAMERA "[[lights]]\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\nradius = 2\n",
+         {"@:7:1:", "unknown key 'radius' in 'lights[0]'"}},
+        // NaN and infinities (TOML spells them nan and inf), and finite doubles that overflow float.
+        {"fov_nan", TESSERA_CAMERA "fov_y = nan\n", {"@:4:9:", "expected a finite number for 'camera.fov_y'"}},
+        {"position_inf", "[camera]\nposition = [inf, 0, 5]\ntarget = [0, 0, 0]\n",
+         {"@:2:", "expected a finite number for 'camera.position[0]'"}},
+        {"light_color_minus_inf", TESSERA_CAMERA "[[lights]]\nposition = [0, 0, 0]\ncolor = [1, -inf, 1]\n",
+         {"@:6:", "expected a finite number for 'lights[0].color[1]'"}},
+        {"translate_overflows_float", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\ntranslate = [1e300, 0, 0]\n",
+         {"@:6:", "expected a finite number for 'objects[0].translate[0]'"}},
+        {"metallic_nan", TESSERA_CAMERA "[materials.a]\nmetallic = -nan\n",
+         {"@:5:", "expected a finite number for 'materials.a.metallic'"}},
+        // Image sizes: each side 1..16384, and at most 2^27 pixels in all.
+        {"width_zero", TESSERA_CAMERA "[output]\nwidth = 0\n", {"@:5:9:", "expected 'output.width' to be in 1..16384, got 0"}},
+        {"height_negative", TESSERA_CAMERA "[output]\nheight = -720\n",
+         {"@:5:10:", "expected 'output.height' to be in 1..16384, got -720"}},
+        {"width_too_large", TESSERA_CAMERA "[output]\nwidth = 16385\n", {"@:5:", "expected 'output.width' to be in 1..16384"}},
+        {"width_absurd", TESSERA_CAMERA "[output]\nwidth = 9223372036854775807\n",
+         {"@:5:", "expected 'output.width' to be in 1..16384"}},
+        {"width_beyond_int64", TESSERA_CAMERA "[output]\nwidth = 99999999999999999999\n", {"@:5:"}},
+        {"too_many_pixels", TESSERA_CAMERA "[output]\nwidth = 16384\nheight = 16384\n",
+         {"@:6:10:", "output size 16384x16384 is 268435456 pixels; at most 134217728 are allowed"}},
+        {"too_many_pixels_height_first", TESSERA_CAMERA "[output]\nheight = 16384\nwidth = 8193\n",
+         {"output size 8193x16384 is 134234112 pixels; at most 134217728 are allowed"}},
+        // Field of view in (0, 180).
+        {"fov_zero", TESSERA_CAMERA "fov_y = 0\n", {"@:4:9:", "expected 'camera.fov_y' to be in (0, 180) degrees, got 0"}},
+        {"fov_180", TESSERA_CAMERA "fov_y = 180.0\n", {"@:4:9:", "expected 'camera.fov_y' to be in (0, 180) degrees"}},
+        {"fov_negative", TESSERA_CAMERA "fov_y = -45\n", {"expected 'camera.fov_y' to be in (0, 180) degrees"}},
+        {"fov_huge", TESSERA_CAMERA "fov_y = 1e30\n", {"expected 'camera.fov_y' to be in (0, 180) degrees"}},
+        // Clip planes: 0 < near < far.
+        {"near_zero", TESSERA_CAMERA "near = 0\n", {"@:4:8:", "expected 'camera.near' to be > 0, got 0"}},
+        {"near_negative", TESSERA_CAMERA "near = -1.0\n", {"@:4:8:", "expected 'camera.near' to be > 0, got -1"}},
+        {"near_equals_far", TESSERA_CAMERA "near = 10\nfar = 10\n",
+         {"@:5:7:", "expected 'camera.near' < 'camera.far', got near = 10, far = 10"}},
+        {"near_beyond_far", TESSERA_CAMERA "near = 10\nfar = 1\n", {"@:5:7:", "expected 'camera.near' < 'camera.far'"}},
+        {"far_below_default_near", TESSERA_CAMERA "far = 0.05\n", {"@:4:7:", "expected 'camera.near' < 'camera.far'"}},
+        {"far_negative", TESSERA_CAMERA "far = -100\n", {"expected 'camera.near' < 'camera.far'"}},
+        // A degenerate camera: no view direction, or up along it.
+        {"target_equals_position", "[camera]\nposition = [1, 2, 3]\ntarget = [1, 2, 3]\n",
+         {"@:3:10:", "expected 'camera.target' to differ from 'camera.position'"}},
+        {"up_parallel_to_view", "[camera]\nposition = [0, 5, 0]\ntarget = [0, 0, 0]\n",
+         {"@:1:1:", "expected 'camera.up' to be non-zero and not parallel to the view direction"}},
+        {"up_antiparallel_to_view", TESSERA_CAMERA "up = [0, 0, 7]\n",
+         {"@:4:6:", "expected 'camera.up' to be non-zero and not parallel to the view direction"}},
+        {"up_zero", TESSERA_CAMERA "up = [0, 0, 0]\n", {"@:4:6:", "expected 'camera.up' to be non-zero"}},
+        // Values out of their documented ranges.
+        {"clear_color_above_one", TESSERA_CAMERA "[output]\nclear_color = [0, 2, 0]\n",
+         {"@:5:", "expected 'output.clear_color[1]' to be in [0, 1], got 2"}},
+        {"metallic_above_one", TESSERA_CAMERA "[[objects]]\nmesh = \"sphere\"\nmaterial = { metallic = 2 }\n",
+         {"@:6:", "expected 'objects[0].material.metallic' to be in [0, 1], got 2"}},
+        {"albedo_negative", TESSERA_CAMERA "[materials.a]\nalbedo = [-0.1, 0, 0]\n",
+         {"@:5:", "expected 'materials.a.albedo[0]' to be in [0, 1]"}},
+        {"light_color_negative", TESSERA_CAMERA "[[lights]]\nposition = [0, 0, 0]\ncolor = [1, 1, -1]\n",
+         {"@:6:", "expected 'lights[0].color[2]' to be >= 0"}},
+        {"unknown_light_type", TESSERA_CAMERA "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\n",
+         {"@:5:8:", "unsupported light type 'spot'"}},
+        {"unknown_mesh", TESSERA_CAMERA "[[objects]]\nmesh = \"teapot\"\n",
+         {"@:5:8:", "unknown mesh 'teapot' for 'objects[0].mesh'; built-in meshes: sphere, plane, cube"}},
+        {"unknown_material", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nmaterial = \"gold\"\n",
+         {"@:6:12:", "unknown material 'gold'", "no materials are defined"}},
+        {"scale_zero", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nscale = [1, 0, 1]\n",
+         {"@:6:9:", "expected every component of 'objects[0].scale' to be non-zero"}},
+        {"scale_nan", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nscale = nan\n",
+         {"@:6:9:", "expected a finite number for 'objects[0].scale'"}},
+        {"rotate_inf", TESSERA_CAMERA "[[objects]]\nmesh = \"cube\"\nrotate = [0, inf, 0]\n",
+         {"@:6:", "expected a finite number for 'objects[0].rotate[1]'"}},
+    };
+    return rows;
+}
+
+#undef TESSERA_CAMERA
+
+}  // namespace tessera::test

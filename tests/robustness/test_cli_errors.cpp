@@ -1,0 +1,272 @@
+// The tessera binary on bad input: a non-zero exit, one clear line on stderr
+// (file:line:column for scene errors), no output file, and no earlier file lost.
+// Also several scenes in one call, with {scene} in the output names.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "robustness/bad_scenes.hpp"
+#include "test_paths.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int status = -1;  // the exit status, or -1 if killed by a signal
+    std::string out;
+    std::string err;
+};
+
+std::string read_file(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+void write_file(const fs::path& path, std::string_view text) {
+    std::ofstream(path, std::ios::binary).write(text.data(), std::streamsize(text.size()));
+}
+
+// Single quotes for the shell (the test paths hold none).
+std::string quoted(const std::string& s) {
+    std::string text(1, '\'');
+    text += s;
+    text += '\'';
+    return text;
+}
+
+// Runs `tessera render ARGS` with stdout and stderr captured in files beside `dir`.
+Run tessera_render(const fs::path& dir, const std::vector<std::string>& args) {
+    std::ostringstream command;
+    command << quoted(TESSERA_CLI_PATH) << " render";
+    for (const std::string& arg : args) command << ' ' << quoted(arg);
+    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    command << " >" << quoted(out.string()) << " 2>" << quoted(err.string());
+    const int raw = std::system(command.str().c_str());
+    Run run;
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    run.out = read_file(out);
+    run.err = read_file(err);
+    // In a sanitizer build the binary is instrumented too: a report is a failure
+    // even when the exit status looks like an ordinary error.
+    CHECK_MESSAGE(run.err.find("Sanitizer") == std::string::npos, run.err);
+    CHECK_MESSAGE(run.err.find("runtime error:") == std::string::npos, run.err);
+    return run;
+}
+
+// A quick valid scene: a small image of one lit sphere.
+constexpr std::string_view kSmallScene =
+    "[output]\nwidth = 48\nheight = 32\n"
+    "[camera]\nposition = [0, 0, 4]\ntarget = [0, 0, 0]\n"
+    "[[lights]]\nposition = [3, 3, 5]\ncolor = [40, 40, 40]\n"
+    "[[objects]]\nmesh = \"sphere\"\n";
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+// The line of `err` about `scene`, or "".
+std::string error_line_for(const std::string& err, const std::string& scene) {
+    const std::string prefix = "tessera: error: " + scene + ":";
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind(prefix, 0) == 0) return line;
+    return "";
+}
+
+std::string with_file_name(std::string_view expected, const std::string& file) {
+    std::string text(expected);
+    for (std::size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at + file.size()))
+        text.replace(at, 1, file);
+    return text;
+}
+
+// Every row of the table in one call (a process start costs more than a bad
+// scene), which also shows that one failing scene does not stop the others;
+// a few rows alone, for the exit status of a single scene.
+TEST_CASE("the CLI refuses every bad scene file with its position and a non-zero exit") {
+    const fs::path dir = tessera::test::output_dir("cli_bad_scenes");
+    std::vector<std::string> args;
+    for (const tessera::test::BadScene& row : tessera::test::bad_scenes()) {
+        const fs::path scene = dir / (std::string(row.name) + ".toml");
+        write_file(scene, row.text);
+        fs::remove(dir / (std::string(row.name) + ".png"));
+        args.push_back(scene.string());
+    }
+    args.push_back("-o");
+    args.push_back((dir / "{scene}.png").string());
+    const Run run = tessera_render(dir, args);
+    CHECK(run.status == 1);
+    const std::size_t rows = tessera::test::bad_scenes().size();
+    CHECK(contains(run.err, "rendered 0 of " + std::to_string(rows) + " scenes; failed: "));
+    for (const tessera::test::BadScene& row : tessera::test::bad_scenes()) {
+        const std::string row_name = row.name;
+        CAPTURE(row_name);
+        const std::string scene = (dir / (row_name + ".toml")).string();
+        const std::string line = error_line_for(run.err, scene);
+        CHECK_MESSAGE(!line.empty(), "no error line for " << scene << " in:\n" << run.err);
+        for (std::string_view part : row.expected) {
+            const std::string wanted = with_file_name(part, scene);
+            CHECK_MESSAGE(contains(line, wanted), "'" << wanted << "' not in: " << line);
+        }
+        CHECK_FALSE(fs::exists(dir / (row_name + ".png")));
+    }
+
+    for (const char* name : {"unclosed_table_header", "unknown_camera_key", "too_many_pixels", "fov_zero"}) {
+        const std::string row_name = name;
+        CAPTURE(row_name);
+        const std::string scene = (dir / (row_name + ".toml")).string();
+        const Run single = tessera_render(dir, {scene, "-o", (dir / (row_name + ".png")).string()});
+        CHECK(single.status == 1);
+        CHECK_MESSAGE(single.err.rfind("tessera: error: " + scene + ":", 0) == 0, single.err);
+        CHECK(std::count(single.err.begin(), single.err.end(), '\n') == 1);  // one line
+        CHECK_FALSE(fs::exists(dir / (row_name + ".png")));
+    }
+}
+
+TEST_CASE("the CLI refuses bad files, arguments and sizes") {
+    const fs::path dir = tessera::test::output_dir("cli_bad_arguments");
+    const fs::path scene = dir / "small.toml";
+    write_file(scene, kSmallScene);
+    const std::string out = (dir / "out.png").string();
+
+    SUBCASE("a missing scene file") {
+        const Run run = tessera_render(dir, {(dir / "nonexistent.toml").string(), "-o", out});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "nonexistent.toml: cannot open scene file"));
+    }
+    SUBCASE("a folder as the scene file") {
+        const Run run = tessera_render(dir, {dir.string(), "-o", out});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "cannot open scene file"));
+    }
+    SUBCASE("an unsupported output format") {
+        const Run run = tessera_render(dir, {scene.string(), "-o", (dir / "out.jpg").string()});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "out.jpg: unsupported output format"));
+    }
+    SUBCASE("--width and --height at the limit per side but too many pixels together") {
+        const Run run = tessera_render(dir, {scene.string(), "-o", out, "--width", "16384", "--height", "16384"});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "image size 16384x16384 (after --width/--height) is 268435456 pixels; at most "
+                                "134217728 are allowed"));
+    }
+    SUBCASE("an override too large, zero or negative") {
+        for (const char* value : {"16385", "0", "-3", "1e9", "wide"}) {
+            const std::string value_text = value;
+            CAPTURE(value_text);
+            const Run run = tessera_render(dir, {scene.string(), "-o", out, "--width", value});
+            CHECK(run.status > 0);
+            CHECK(contains(run.err, "--width"));
+        }
+    }
+    SUBCASE("a bad ISA or tile size is an error, not a crash") {
+        Run run = tessera_render(dir, {scene.string(), "-o", out, "--isa", "neon"});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "unknown ISA 'neon'"));
+        run = tessera_render(dir, {scene.string(), "-o", out, "--tile-size", "48"});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "tile size must be a power of two"));
+    }
+    SUBCASE("no output file") {
+        const Run run = tessera_render(dir, {scene.string()});
+        CHECK(run.status > 0);
+        CHECK(contains(run.err, "--output"));
+    }
+}
+
+TEST_CASE("a failed render or write never loses the file already at the output path") {
+    const fs::path dir = tessera::test::output_dir("cli_nothing_lost");
+    const fs::path good = dir / "good.toml", bad = dir / "bad.toml";
+    write_file(good, kSmallScene);
+    write_file(bad, "[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 5]\n");
+    const fs::path image = dir / "picture.png";
+    fs::remove(image);
+    REQUIRE(tessera_render(dir, {good.string(), "-o", image.string()}).status == 0);
+    const std::string before = read_file(image);
+    REQUIRE(before.size() > 8);
+
+    SUBCASE("a scene that fails to load") {
+        const Run run = tessera_render(dir, {bad.string(), "-o", image.string()});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "expected 'camera.target' to differ"));
+    }
+    SUBCASE("an output path that is a folder, written after the good file") {
+        const fs::path folder = dir / "folder.exr";
+        fs::create_directories(folder);
+        const Run run = tessera_render(dir, {good.string(), "-o", image.string(), "-o", folder.string()});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "folder.exr"));
+        CHECK(fs::is_directory(folder));
+    }
+    SUBCASE("an output folder that does not exist") {
+        const Run run = tessera_render(dir, {good.string(), "-o", (dir / "missing" / "x.png").string()});
+        CHECK(run.status == 1);
+        CHECK_FALSE(fs::exists(dir / "missing"));
+    }
+    CHECK(read_file(image) == before);
+    for (const auto& entry : fs::directory_iterator(dir))
+        CHECK_MESSAGE(!contains(entry.path().filename().string(), ".tmp"), "left behind: " << entry.path());
+}
+
+TEST_CASE("several scenes in one call: {scene} names the outputs, a failure does not stop the others") {
+    const fs::path dir = tessera::test::output_dir("cli_several_scenes");
+    const fs::path a = dir / "alpha.toml", b = dir / "broken.toml", c = dir / "gamma.toml";
+    write_file(a, kSmallScene);
+    write_file(b, std::string(kSmallScene) + "[[objects]]\nmesh = \"teapot\"\n");
+    write_file(c, std::string(kSmallScene) + "[[objects]]\nmesh = \"cube\"\ntranslate = [1, 0, 0]\n");
+    for (const char* stem : {"alpha", "broken", "gamma"}) {
+        fs::remove(dir / (std::string(stem) + ".png"));
+        fs::remove(dir / (std::string(stem) + ".exr"));
+    }
+    const std::string png = (dir / "{scene}.png").string(), exr = (dir / "{scene}.exr").string();
+
+    SUBCASE("all good") {
+        const Run run = tessera_render(dir, {a.string(), c.string(), "-o", png, "-o", exr});
+        CHECK(run.status == 0);
+        CHECK(contains(run.out, "rendered 2 of 2 scenes"));
+        for (const char* name : {"alpha.png", "alpha.exr", "gamma.png", "gamma.exr"}) CHECK(fs::exists(dir / name));
+        CHECK(read_file(dir / "alpha.png") != read_file(dir / "gamma.png"));
+    }
+    SUBCASE("one bad scene in the middle") {
+        const Run run = tessera_render(dir, {a.string(), b.string(), c.string(), "-o", png});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, b.string() + ":"));
+        CHECK(contains(run.err, "unknown mesh 'teapot'"));
+        CHECK(contains(run.err, "rendered 2 of 3 scenes; failed: " + b.string()));
+        CHECK(fs::exists(dir / "alpha.png"));
+        CHECK(fs::exists(dir / "gamma.png"));
+        CHECK_FALSE(fs::exists(dir / "broken.png"));
+    }
+    SUBCASE("every -o must contain {scene}") {
+        const Run run = tessera_render(dir, {a.string(), c.string(), "-o", png, "-o", (dir / "fixed.exr").string()});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "with several scenes every -o must contain {scene}"));
+        CHECK_FALSE(fs::exists(dir / "alpha.png"));  // refused before rendering anything
+    }
+    SUBCASE("two scenes with the same stem") {
+        fs::create_directories(dir / "other");
+        write_file(dir / "other" / "alpha.toml", kSmallScene);
+        const Run run = tessera_render(dir, {a.string(), (dir / "other" / "alpha.toml").string(), "-o", png});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "two scene files have the stem 'alpha'"));
+    }
+    SUBCASE("one scene: {scene} is optional, and replaced when given") {
+        CHECK(tessera_render(dir, {a.string(), "-o", png}).status == 0);
+        CHECK(fs::exists(dir / "alpha.png"));
+        const Run run = tessera_render(dir, {c.string(), "-o", (dir / "plain.png").string()});
+        CHECK(run.status == 0);
+        CHECK(run.out.empty());  // no summary line for a single scene
+        CHECK(fs::exists(dir / "plain.png"));
+    }
+}
