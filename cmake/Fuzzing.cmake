@@ -32,14 +32,4 @@ function(tessera_add_fuzzers)
     target_link_options(fuzz_${target} PRIVATE -fsanitize=fuzzer)
     set_target_properties(fuzz_${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/fuzz)
   endforeach()
-
-  # clang 14 (Debian 12's) rejects __builtin_cpu_supports("x86-64-v2"), which
-  # src/simd/isa.cpp uses; spell the levels out for that one file (see the header).
-  include(CheckCXXSourceCompiles)
-  check_cxx_source_compiles("int main() { return __builtin_cpu_supports(\"x86-64-v2\"); }"
-                            TESSERA_HAVE_CPU_LEVEL_NAMES)
-  if(NOT TESSERA_HAVE_CPU_LEVEL_NAMES AND TARGET tessera_simd)
-    set_source_files_properties(${PROJECT_SOURCE_DIR}/src/simd/isa.cpp TARGET_DIRECTORY tessera_simd
-      PROPERTIES COMPILE_OPTIONS "-include;${PROJECT_SOURCE_DIR}/cmake/clang_cpu_levels.h")
-  endif()
 endfunction()

@@ -20,6 +20,12 @@ std::uint32_t outcode(const glm::vec4& p, const GuardBand& guard) {
     return code;
 }
 
+std::uint32_t outcode(const ShadedVertex& vertex, const GuardBand& guard) {
+    const glm::vec3& n = vertex.normal;
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return kNotFinite;
+    return outcode(vertex.clip_pos, guard);
+}
+
 namespace {
 
 // Signed distance to a clip plane: >= 0 inside.

@@ -29,7 +29,7 @@ enum OutcodeBits : std::uint32_t {
     kOutsideViewLeft = 1u << 7,
     kOutsideViewTop = 1u << 8,
     kOutsideViewBottom = 1u << 9,
-    kNotFinite = 1u << 10,  // NaN or infinity anywhere in the position
+    kNotFinite = 1u << 10,  // NaN or infinity anywhere in the position (or the normal)
 };
 inline constexpr std::uint32_t kClipPlaneBits = 0x3Fu;  // the planes that really clip
 
@@ -42,6 +42,9 @@ struct GuardBand {
 };
 
 std::uint32_t outcode(const glm::vec4& clip_pos, const GuardBand& guard);
+// The same for a shaded vertex: a NaN or infinite normal (or position) makes
+// it kNotFinite, so its triangles are dropped rather than shaded into NaN.
+std::uint32_t outcode(const ShadedVertex& vertex, const GuardBand& guard);
 
 enum class ClipResult { rejected, accepted, clipped };
 

@@ -75,11 +75,13 @@ private:
 }  // namespace
 
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
-                        std::uint32_t material, const FrameVertices& frame, const geometry::Viewport& viewport,
-                        const geometry::GuardBand& guard, AssembledTriangles& out) {
+                        std::uint32_t vertex_count, std::uint32_t material, const FrameVertices& frame,
+                        const geometry::Viewport& viewport, const geometry::GuardBand& guard,
+                        AssembledTriangles& out) {
     SetupQueue queue(isa, frame, viewport, material, out);
     geometry::ClippedPolygon polygon;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+        if (indices[t] >= vertex_count || indices[t + 1] >= vertex_count || indices[t + 2] >= vertex_count) continue;
         const std::array<std::uint32_t, 3> ref{first_vertex + indices[t], first_vertex + indices[t + 1],
                                                first_vertex + indices[t + 2]};
         const std::uint32_t oc0 = frame.outcodes[ref[0]], oc1 = frame.outcodes[ref[1]], oc2 = frame.outcodes[ref[2]];

@@ -28,12 +28,14 @@ struct AssembledTriangles {
 };
 
 // Appends to `out` the triangles of `indices` (three per triangle, relative to
-// `first_vertex`) that survive culling, clipping and setup, in order. Accepted
+// `first_vertex`; an index >= vertex_count drops its triangle) that survive
+// culling, clipping and setup, in order. Accepted
 // triangles use the precomputed screen vertices and are set up a vector at a
 // time with the ISA's kernels (the same result as one by one); clipped ones
 // become fans.
-void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex, std::uint32_t material,
-                        const FrameVertices& frame, const geometry::Viewport& viewport,
-                        const geometry::GuardBand& guard, AssembledTriangles& out);
+void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
+                        std::uint32_t vertex_count, std::uint32_t material, const FrameVertices& frame,
+                        const geometry::Viewport& viewport, const geometry::GuardBand& guard,
+                        AssembledTriangles& out);
 
 }  // namespace tessera::raster

@@ -58,6 +58,26 @@ struct TileScratch {
     }
 };
 
+// What render() relies on and checks itself, at a cost per object, not per
+// vertex: sizes, and the references it indexes with. Index values are checked
+// as triangles are assembled (out of range: the triangle is dropped).
+// validate_scene() checks everything, with messages for people.
+void check_renderable(const Scene& scene) {
+    if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageDimension || scene.height > kMaxImageDimension ||
+        std::int64_t(scene.width) * scene.height > kMaxImagePixels)
+        throw std::invalid_argument("image size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
+                                    " is outside 1.." + std::to_string(kMaxImageDimension) + " per side or above " +
+                                    std::to_string(kMaxImagePixels) + " pixels");
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size())
+            throw std::invalid_argument("object " + std::to_string(o) + " refers to a missing mesh or material");
+        const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0)
+            throw std::invalid_argument("mesh '" + mesh.name + "' needs one normal per position and whole triangles");
+    }
+}
+
 }  // namespace
 
 struct Renderer::Frame {
@@ -110,9 +130,7 @@ std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
 
 const RenderedImage& Renderer::render(const Scene& scene) {
-    if (scene.width < 1 || scene.height < 1 || scene.width > kMaxImageDimension || scene.height > kMaxImageDimension)
-        throw std::invalid_argument("image size must be from 1 to " + std::to_string(kMaxImageDimension) +
-                                    " pixels per side");
+    check_renderable(scene);
     Frame& f = *frame_;
     f.stats = {};
     f.arena.execute([&] {
@@ -164,7 +182,7 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
             const std::size_t base = first_vertex[o] + first;
             geometry::shade_vertices(mesh, first, object.model, view_projection, {vertices.data() + base, count});
             for (std::size_t v = base; v < base + count; ++v) {
-                outcodes[v] = geometry::outcode(vertices[v].clip_pos, guard);
+                outcodes[v] = geometry::outcode(vertices[v], guard);
                 // The viewport transform, once per vertex rather than once per triangle corner.
                 if (!(outcodes[v] & geometry::kClipPlaneBits)) screen[v] = geometry::to_screen(vertices[v].clip_pos, viewport);
             }
@@ -199,8 +217,9 @@ void Renderer::Frame::assemble_triangles(const Scene& scene) {
             scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
         chunk.assembled.clear();
         render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
-        raster::assemble_triangles(isa, indices, first_vertex[chunk.object], object.material, frame, viewport, guard,
-                                   chunk.assembled);
+        raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
+                                   std::uint32_t(scene.meshes[object.mesh].positions.size()), object.material, frame,
+                                   viewport, guard, chunk.assembled);
     });
     for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].assembled.triangles.size();
 }

@@ -15,15 +15,23 @@ struct IsaSupport {
 
 // Each kernel copy is built with -march=x86-64-v2/v3/v4, so the compiler may use
 // anything in that level (POPCNT, BMI2, AVX512VL, ...), and the OS must save
-// the wider registers. xsimd 8.1 checks neither, so the level is asked of
-// libgcc too, which checks both.
+// the wider registers. xsimd 8.1 checks neither, so the levels' features are
+// asked of the compiler's runtime too, which checks both. (Spelled out: clang
+// before 16 does not know the level names "x86-64-v2".)
 IsaSupport detect_isa_support() {
     const auto arch = xsimd::available_architectures();
     __builtin_cpu_init();
+    const bool v2 = __builtin_cpu_supports("sse4.2") && __builtin_cpu_supports("ssse3") &&
+                    __builtin_cpu_supports("popcnt");
+    const bool v3 = v2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                    __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
+    const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                    __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+                    __builtin_cpu_supports("avx512vl");
     IsaSupport s;
-    s.sse4 = arch.sse4_2 && __builtin_cpu_supports("x86-64-v2");
-    s.avx2 = arch.fma3_avx2 && __builtin_cpu_supports("x86-64-v3");
-    s.avx512 = arch.avx512bw && __builtin_cpu_supports("x86-64-v4");
+    s.sse4 = arch.sse4_2 && v2;
+    s.avx2 = arch.fma3_avx2 && v3;
+    s.avx512 = arch.avx512bw && v4;
     return s;
 }
 

@@ -35,7 +35,7 @@ TEST_CASE("assembling triangles with every ISA's setup kernel gives the scalar r
     const raster::FrameVertices frame{vertices, outcodes, screen};
 
     raster::AssembledTriangles reference;
-    raster::assemble_triangles(simd::Isa::scalar, indices, 0, 3, frame, viewport, guard, reference);
+    raster::assemble_triangles(simd::Isa::scalar, indices, 0, std::uint32_t(screen.size()), 3, frame, viewport, guard, reference);
     REQUIRE(reference.triangles.size() > 5000);
     REQUIRE(reference.triangles.size() < 20000);  // some were dropped
 
@@ -46,7 +46,7 @@ TEST_CASE("assembling triangles with every ISA's setup kernel gives the scalar r
             continue;
         }
         raster::AssembledTriangles assembled;
-        raster::assemble_triangles(isa, indices, 0, 3, frame, viewport, guard, assembled);
+        raster::assemble_triangles(isa, indices, 0, std::uint32_t(screen.size()), 3, frame, viewport, guard, assembled);
         REQUIRE(assembled.triangles.size() == reference.triangles.size());
         int different = 0;
         for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
