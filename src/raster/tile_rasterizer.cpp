@@ -29,8 +29,8 @@ struct TriangleInTile {
 };
 
 [[gnu::always_inline]] inline std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
-    const int x_begin = std::max(t.px_min, tile.x0), x_end = std::min(t.px_max + 1, tile.x1);
-    const int y_begin = std::max(t.py_min, tile.y0), y_end = std::min(t.py_max + 1, tile.y1);
+    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
+    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return std::nullopt;
     const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
     const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
@@ -65,7 +65,7 @@ namespace {
 [[gnu::always_inline]] inline void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
                       const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
     EdgeStepper e0 = placed.e0, e1 = placed.e1, e2 = placed.e2;
-    const float inv_area = 1.0f / float(t.double_area);
+    const float inv_area = t.inv_area;
     for (int y = placed.y_begin; y < placed.y_end; ++y) {
         std::int64_t w0 = e0.row, w1 = e1.row, w2 = e2.row;
         std::size_t index = std::size_t(y - tile.y0) * buffers.side + (placed.x_begin - tile.x0);
@@ -116,7 +116,7 @@ void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t tr
     }
     block.x_begin = placed->x_begin - tile.x0, block.x_end = placed->x_end - tile.x0;
     block.y_begin = placed->y_begin - tile.y0, block.y_end = placed->y_end - tile.y0;
-    block.inv_area = 1.0f / float(t.double_area);
+    block.inv_area = t.inv_area;
     block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
     block.triangle_id = triangle_id;
     const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),

@@ -44,12 +44,12 @@ struct RasterCounters {
 
 // Perspective-correct barycentrics of corners 1 and 2 from the screen-space
 // ones stored per pixel: b_i ∝ λ_i / w_i (attributes are linear in world space,
-// not in screen space).
+// not in screen space). inv_w: 1 / clip w of the three corners.
 struct Barycentrics {
     float b1, b2;
 };
-inline Barycentrics perspective_barycentrics(const RasterTriangle& t, float lambda1, float lambda2) {
-    const float q0 = (1.0f - lambda1 - lambda2) * t.inv_w[0], q1 = lambda1 * t.inv_w[1], q2 = lambda2 * t.inv_w[2];
+inline Barycentrics perspective_barycentrics(const std::array<float, 3>& inv_w, float lambda1, float lambda2) {
+    const float q0 = (1.0f - lambda1 - lambda2) * inv_w[0], q1 = lambda1 * inv_w[1], q2 = lambda2 * inv_w[2];
     const float inv_sum = 1.0f / (q0 + q1 + q2);
     return {q1 * inv_sum, q2 * inv_sum};
 }

@@ -11,9 +11,8 @@ static_assert(sizeof(geometry::ScreenVertex) == 4 * sizeof(std::int32_t), "the s
 // Accepted triangles waiting for the setup kernel, kept in submission order.
 class SetupQueue {
 public:
-    SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, std::uint32_t material,
-               AssembledTriangles& out)
-        : isa_(isa), frame_(frame), viewport_(viewport), material_(material), out_(out) {
+    SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, AssembledTriangles& out)
+        : isa_(isa), frame_(frame), viewport_(viewport), out_(out) {
         in_.screen = reinterpret_cast<const std::int32_t*>(frame.screen.data());
         in_.count = 0;
         in_.width = viewport.width;
@@ -46,12 +45,11 @@ public:
             RasterTriangle& t = out_.triangles.emplace_back();
             for (int k = 0; k < 3; ++k) {
                 const geometry::ScreenVertex& v = frame_.screen[ref[k]];
-                t.x[k] = v.x, t.y[k] = v.y, t.depth[k] = v.depth, t.inv_w[k] = v.inv_w, t.vertex[k] = ref[k];
+                t.x[k] = v.x, t.y[k] = v.y, t.depth[k] = v.depth, t.vertex[k] = ref[k];
             }
-            t.material = material_;
-            t.double_area = verdicts_.double_area[i];
-            t.px_min = verdicts_.px_min[i], t.px_max = verdicts_.px_max[i];
-            t.py_min = verdicts_.py_min[i], t.py_max = verdicts_.py_max[i];
+            t.inv_area = 1.0f / float(verdicts_.double_area[i]);  // as setup_triangle() computes it
+            t.px_min = std::int16_t(verdicts_.px_min[i]), t.px_max = std::int16_t(verdicts_.px_max[i]);
+            t.py_min = std::int16_t(verdicts_.py_min[i]), t.py_max = std::int16_t(verdicts_.py_max[i]);
         }
         in_.count = 0;
     }
@@ -59,14 +57,13 @@ public:
 private:
     void set_up_one(const std::array<std::uint32_t, 3>& ref) {
         const auto set_up = setup_triangle(
-            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref, material_);
+            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref);
         if (set_up) out_.triangles.push_back(*set_up);
     }
 
     simd::Isa isa_;
     const FrameVertices& frame_;
     geometry::Viewport viewport_;
-    std::uint32_t material_;
     AssembledTriangles& out_;
     SetupBatchInput in_;
     SetupBatchOutput verdicts_;
@@ -75,10 +72,10 @@ private:
 }  // namespace
 
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
-                        std::uint32_t vertex_count, std::uint32_t material, const FrameVertices& frame,
+                        std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
                         AssembledTriangles& out) {
-    SetupQueue queue(isa, frame, viewport, material, out);
+    SetupQueue queue(isa, frame, viewport, out);
     geometry::ClippedPolygon polygon;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
         if (indices[t] >= vertex_count || indices[t + 1] >= vertex_count || indices[t + 2] >= vertex_count) continue;
@@ -107,7 +104,7 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
         for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0
             const auto set_up = setup_triangle(
                 viewport, {polygon.corners[0].clip_pos, polygon.corners[i].clip_pos, polygon.corners[i + 1].clip_pos},
-                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, material);
+                {corner_ref[0], corner_ref[i], corner_ref[i + 1]});
             if (set_up) out.triangles.push_back(*set_up);
         }
     }

@@ -34,7 +34,7 @@ struct AssembledTriangles {
 // time with the ISA's kernels (the same result as one by one); clipped ones
 // become fans.
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
-                        std::uint32_t vertex_count, std::uint32_t material, const FrameVertices& frame,
+                        std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
                         AssembledTriangles& out);
 

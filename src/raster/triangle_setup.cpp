@@ -39,46 +39,46 @@ bool covers_a_centre(const RasterTriangle& t) {
 }  // namespace
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
-                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material) {
+                                             const std::array<std::uint32_t, 3>& vertex) {
     RasterTriangle t;
-    t.material = material;
     for (int i = 0; i < 3; ++i) {
         t.x[i] = corners[i].x;
         t.y[i] = corners[i].y;
         t.depth[i] = corners[i].depth;
-        t.inv_w[i] = corners[i].inv_w;
         t.vertex[i] = vertex[i];
     }
-    t.double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
-    if (t.double_area == 0) return std::nullopt;
-    if (t.double_area < 0) {
+    std::int64_t double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
+    if (double_area == 0) return std::nullopt;
+    if (double_area < 0) {
         std::swap(t.x[1], t.x[2]);
         std::swap(t.y[1], t.y[2]);
         std::swap(t.depth[1], t.depth[2]);
-        std::swap(t.inv_w[1], t.inv_w[2]);
         std::swap(t.vertex[1], t.vertex[2]);
-        t.double_area = -t.double_area;
+        double_area = -double_area;
     }
+    t.inv_area = 1.0f / float(double_area);
     const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
     const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
-    t.px_min = std::max(first_centre_at_or_after(min_x), 0);
-    t.px_max = std::min(last_centre_at_or_before(max_x), viewport.width - 1);
-    t.py_min = std::max(first_centre_at_or_after(min_y), 0);
-    t.py_max = std::min(last_centre_at_or_before(max_y), viewport.height - 1);
+    const std::int32_t px_min = std::max(first_centre_at_or_after(min_x), 0);
+    const std::int32_t px_max = std::min(last_centre_at_or_before(max_x), viewport.width - 1);
+    const std::int32_t py_min = std::max(first_centre_at_or_after(min_y), 0);
+    const std::int32_t py_max = std::min(last_centre_at_or_before(max_y), viewport.height - 1);
     // Most triangles of a finely tessellated mesh fall between pixel centres:
     // those whose box holds no centre, and small ones that cover none of the
     // few centres in their box, go no further.
-    if (t.px_min > t.px_max || t.py_min > t.py_max) return std::nullopt;
-    if (t.px_max - t.px_min <= 1 && t.py_max - t.py_min <= 1 && !covers_a_centre(t)) return std::nullopt;
+    if (px_min > px_max || py_min > py_max) return std::nullopt;
+    t.px_min = std::int16_t(px_min), t.px_max = std::int16_t(px_max);
+    t.py_min = std::int16_t(py_min), t.py_max = std::int16_t(py_max);
+    if (px_max - px_min <= 1 && py_max - py_min <= 1 && !covers_a_centre(t)) return std::nullopt;
     return t;
 }
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
-                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material) {
+                                             const std::array<std::uint32_t, 3>& vertex) {
     return setup_triangle(viewport,
                           {geometry::to_screen(clip_pos[0], viewport), geometry::to_screen(clip_pos[1], viewport),
                            geometry::to_screen(clip_pos[2], viewport)},
-                          vertex, material);
+                          vertex);
 }
 
 }  // namespace tessera::raster

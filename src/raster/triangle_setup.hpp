@@ -7,22 +7,25 @@
 #include <optional>
 
 #include "geometry/viewport.hpp"
+#include "tessera/scene.hpp"
 
 namespace tessera::raster {
 
 // A triangle ready to rasterize, in image space: x right, y down, row 0 at
 // the top of the picture, pixel (i, j) centred at (i + 0.5, j + 0.5).
-struct RasterTriangle {
-    // What rasterization reads, first.
-    std::array<std::int32_t, 3> x, y;   // corner positions, 24.8 fixed point
-    std::int32_t px_min = 0, px_max = 0, py_min = 0, py_max = 0;  // inclusive pixel box, clamped to the image
-    std::int64_t double_area = 0;       // edge function of corner 2 against edge 0→1, > 0
-    std::array<float, 3> depth;         // window depth z_ndc·0.5 + 0.5, in [0, 1]
-    // What only the shading of visible pixels reads.
-    std::array<float, 3> inv_w;         // 1 / clip w, for perspective correction
+// One cache line: setup writes hundreds of thousands of these a frame and the
+// tiles read them back, so their size is memory traffic. What only visible
+// pixels need is looked up then: 1/w from the corners' vertices, the
+// material from the object the triangle belongs to.
+struct alignas(64) RasterTriangle {
+    std::array<std::int32_t, 3> x, y;     // corner positions, 24.8 fixed point
+    std::int16_t px_min, px_max, py_min, py_max;  // inclusive pixel box, clamped to the image (< 16384)
+    float inv_area;                       // 1 / double area, where double area = edge function of corner 2 against edge 0→1 > 0
+    std::array<float, 3> depth;           // window depth z_ndc·0.5 + 0.5, in [0, 1]
     std::array<std::uint32_t, 3> vertex;  // the corners' vertex references (see ShadedVertex)
-    std::uint32_t material = 0;
 };
+static_assert(sizeof(RasterTriangle) == 64);
+static_assert(kMaxImageDimension <= 32767, "pixel boxes are int16");
 
 using geometry::ScreenVertex;
 using geometry::Viewport;
@@ -31,10 +34,10 @@ using geometry::Viewport;
 // triangle has no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
-                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material);
+                                             const std::array<std::uint32_t, 3>& vertex);
 // The same from clip positions (each inside the near plane and the guard band).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
-                                             const std::array<std::uint32_t, 3>& vertex, std::uint32_t material);
+                                             const std::array<std::uint32_t, 3>& vertex);
 
 // Edge function of the edge a→b at point p, all in fixed point: twice the
 // signed area of (a, b, p), positive when p lies inside a set-up triangle.

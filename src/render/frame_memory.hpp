@@ -23,7 +23,9 @@ inline constexpr std::uint32_t kMaxChunks = (raster::kNoTriangle >> kChunkIdShif
 static_assert(kChunkTriangles * 7 < (1u << kChunkIdShift));
 
 // A run of one object's triangles and what assembly and binning made of them.
-struct Chunk {
+// Chunks are filled by different threads at once: each gets its own cache
+// lines, or every push_back would bounce its neighbour's vector between cores.
+struct alignas(128) Chunk {
     std::uint32_t object = 0;
     std::uint32_t first_triangle = 0;  // index into the mesh's triangles
     std::uint32_t triangle_count = 0;

@@ -218,8 +218,8 @@ void Renderer::Frame::assemble_triangles(const Scene& scene) {
         chunk.assembled.clear();
         render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
-                                   std::uint32_t(scene.meshes[object.mesh].positions.size()), object.material, frame,
-                                   viewport, guard, chunk.assembled);
+                                   std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
+                                   chunk.assembled);
     });
     for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].assembled.triangles.size();
 }
@@ -295,11 +295,11 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) 
     auto lookup = [&](std::uint32_t id) {
         const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
         const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
-        return shade::TriangleCorners{&t, {&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
-                                           &chunk.vertex(t.vertex[2], vertices)}};
+        return shade::TriangleCorners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
+                                       &chunk.vertex(t.vertex[2], vertices)},
+                                      &scene.materials[scene.objects[chunk.object].material]};
     };
-    const std::size_t count =
-        shade::gather_surface_points(s.raster, rect.width(), rect.height(), scene.materials, lookup, s.fragments);
+    const std::size_t count = shade::gather_surface_points(s.raster, rect.width(), rect.height(), lookup, s.fragments);
     const shade::RadianceOutputs shaded = s.fragments.outputs();
     if (count > 0) shade::shade_fragments(isa, s.fragments.inputs(count), lights, shaded);
     s.fragments_shaded += count;

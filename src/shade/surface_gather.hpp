@@ -40,8 +40,8 @@ private:
 
 // A visible triangle as the gather needs it.
 struct TriangleCorners {
-    const raster::RasterTriangle* triangle;
     const geometry::ShadedVertex* corner[3];
+    const Material* material;
 };
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`
@@ -49,12 +49,12 @@ struct TriangleCorners {
 // Neighbouring pixels mostly show the same triangle, so its corners are
 // fetched once per run of pixels.
 template <class Lookup>
-std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, int height,
-                                  std::span<const Material> materials, Lookup&& lookup, FragmentBuffer& out) {
+std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
+                                  FragmentBuffer& out) {
     std::size_t count = 0;
     std::uint32_t cached_id = raster::kNoTriangle;
-    const raster::RasterTriangle* t = nullptr;
     const Material* m = nullptr;
+    std::array<float, 3> inv_w{};
     glm::vec3 world0{}, world_d1{}, world_d2{}, normal0{}, normal_d1{}, normal_d2{};
     for (int y = 0; y < height; ++y) {
         const std::size_t row = std::size_t(y) * tile.side;
@@ -64,14 +64,15 @@ std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, in
             if (id != cached_id) {
                 cached_id = id;
                 const TriangleCorners c = lookup(id);
-                t = c.triangle;
-                m = &materials[t->material];
+                m = c.material;
+                // As the viewport transform computed it (ScreenVertex::inv_w).
+                for (int k = 0; k < 3; ++k) inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
                 world0 = c.corner[0]->world_pos;
                 world_d1 = c.corner[1]->world_pos - world0, world_d2 = c.corner[2]->world_pos - world0;
                 normal0 = c.corner[0]->normal;
                 normal_d1 = c.corner[1]->normal - normal0, normal_d2 = c.corner[2]->normal - normal0;
             }
-            const auto [b1, b2] = raster::perspective_barycentrics(*t, tile.lambda1[row + x], tile.lambda2[row + x]);
+            const auto [b1, b2] = raster::perspective_barycentrics(inv_w, tile.lambda1[row + x], tile.lambda2[row + x]);
             out.set(count++, world0 + b1 * world_d1 + b2 * world_d2, normal0 + b1 * normal_d1 + b2 * normal_d2, *m);
         }
     }

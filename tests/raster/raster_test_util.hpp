@@ -23,7 +23,7 @@ inline std::optional<raster::RasterTriangle> screen_triangle(glm::vec2 a, glm::v
                                   {clip_for_screen(a.x, a.y, depth, 1, size, size),
                                    clip_for_screen(b.x, b.y, depth, 1, size, size),
                                    clip_for_screen(c.x, c.y, depth, 1, size, size)},
-                                  {0, 1, 2}, 0);
+                                  {0, 1, 2});
 }
 
 // 1 for each pixel of a size×size image whose centre the triangle covers.

@@ -17,7 +17,7 @@ TEST_CASE("binning lists each triangle in exactly the tiles its pixel box touche
                                         {test::clip_for_screen(a.x, a.y, 0.5f, 1, 100, 70),
                                          test::clip_for_screen(b.x, b.y, 0.5f, 1, 100, 70),
                                          test::clip_for_screen(c.x, c.y, 0.5f, 1, 100, 70)},
-                                        {0, 1, 2}, 0);
+                                        {0, 1, 2});
         REQUIRE(t);
         triangles.push_back(*t);
     };

@@ -34,7 +34,7 @@ TEST_CASE("interpolation is perspective-correct: barycentrics match the ray-tria
     const auto t = raster::setup_triangle({kSize, kSize},
                                           {projection * glm::vec4(p0, 1), projection * glm::vec4(p1, 1),
                                            projection * glm::vec4(p2, 1)},
-                                          {0, 1, 2}, 0);
+                                          {0, 1, 2});
     REQUIRE(t);
     raster::TileBuffers buffers;
     buffers.reset(kSize);
@@ -44,6 +44,8 @@ TEST_CASE("interpolation is perspective-correct: barycentrics match the ray-tria
 
     // Which input corner each set-up corner is (setup may swap 1 and 2).
     const glm::vec3 corner[3] = {p0, t->vertex[1] == 1 ? p1 : p2, t->vertex[1] == 1 ? p2 : p1};
+    std::array<float, 3> inv_w;  // 1 / clip w of the set-up corners
+    for (int k = 0; k < 3; ++k) inv_w[k] = 1.0f / (projection * glm::vec4(corner[k], 1)).w;
     const glm::vec3 normal = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
     double worst_perspective = 0, worst_linear = 0, worst_depth = 0;
     for (int j = 0; j < kSize; ++j)
@@ -59,7 +61,7 @@ TEST_CASE("interpolation is perspective-correct: barycentrics match the ray-tria
             const float area = glm::dot(glm::cross(corner[1] - corner[0], corner[2] - corner[0]), normal);
             const float exact_b1 = glm::dot(glm::cross(hit - corner[0], corner[2] - corner[0]), normal) / area;
             const float exact_b2 = glm::dot(glm::cross(corner[1] - corner[0], hit - corner[0]), normal) / area;
-            const auto [b1, b2] = raster::perspective_barycentrics(*t, buffers.lambda1[p], buffers.lambda2[p]);
+            const auto [b1, b2] = raster::perspective_barycentrics(inv_w, buffers.lambda1[p], buffers.lambda2[p]);
             worst_perspective = std::max({worst_perspective, double(std::abs(b1 - exact_b1)), double(std::abs(b2 - exact_b2))});
             worst_linear = std::max(worst_linear, double(std::abs(buffers.lambda1[p] - exact_b1)));
             // Window depth of the hit point: z_ndc · 0.5 + 0.5.

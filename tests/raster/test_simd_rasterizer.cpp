@@ -32,7 +32,7 @@ TEST_CASE("every ISA's rasterizer gives bit-identical tile buffers to the scalar
                                         {test::clip_for_screen(a.x, a.y, depth(rng), 1, image, image),
                                          test::clip_for_screen(b.x, b.y, depth(rng), 1, image, image),
                                          test::clip_for_screen(c.x, c.y, depth(rng), 1, image, image)},
-                                        {0, 1, 2}, 0);
+                                        {0, 1, 2});
         if (t) triangles.push_back(*t);
     }
     const raster::TileRect tile{64, 64, 64 + kTile, 64 + kTile};

@@ -95,7 +95,7 @@ std::vector<std::array<ScreenVertex, 3>> random_triangles(std::mt19937& rng, con
             const glm::vec2 q = (p[k] + offset) * float(geometry::kSubpixelScale);
             corners[k] = {std::int32_t(std::lrintf(q.x)), std::int32_t(std::lrintf(q.y)), depth + depth_slope(rng), 1.0f};
         }
-        if (visible_only && !raster::setup_triangle(viewport, corners, {0, 1, 2}, 0)) continue;
+        if (visible_only && !raster::setup_triangle(viewport, corners, {0, 1, 2})) continue;
         triangles.push_back(corners);
     }
     return triangles;
@@ -105,7 +105,7 @@ std::vector<RasterTriangle> tile_triangles(const SizeClass& size) {
     std::mt19937 rng(kSeed);
     std::vector<RasterTriangle> triangles;
     for (const auto& corners : random_triangles(rng, size, size.batch * kBatchesInPool, kTileImage, kTile, true))
-        triangles.push_back(*raster::setup_triangle(kTileImage, corners, {0, 1, 2}, 0));
+        triangles.push_back(*raster::setup_triangle(kTileImage, corners, {0, 1, 2}));
     return triangles;
 }
 
@@ -162,7 +162,7 @@ void bench_setup(benchmark::State& state, const SizeClass& size) {
     std::size_t accepted = 0;
     for (auto _ : state) {
         for (std::uint32_t i = 0; i < kTriangles; ++i) {
-            std::optional<RasterTriangle> t = raster::setup_triangle(kFrame, triangles[i], {3 * i, 3 * i + 1, 3 * i + 2}, 0);
+            std::optional<RasterTriangle> t = raster::setup_triangle(kFrame, triangles[i], {3 * i, 3 * i + 1, 3 * i + 2});
             accepted += t.has_value();
             benchmark::DoNotOptimize(t);
         }
