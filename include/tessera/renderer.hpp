@@ -38,14 +38,16 @@ struct FrameStats {
     std::uint64_t triangles_binned = 0;      // left after clipping, culling and setup
     std::uint64_t fragments_rasterized = 0;  // pixel centres covered, over all triangles
     std::uint64_t fragments_shaded = 0;      // visible pixels, each shaded once
-    // Wall-clock time of the frame's passes, one after the other.
+    // Wall-clock time of the frame's three passes, one after the other.
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
+    double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk
+    double tiles_ms = 0;        // the tile pass: rasterize, shade, resolve, tile by tile
+    double total_ms = 0;
+    // The steps inside the triangle and tile passes: busy time summed over
+    // the workers, divided by the thread count, so that they add up to about
+    // their pass's time.
     double clip_setup_ms = 0;   // clipping, culling, triangle setup
     double binning_ms = 0;      // sorting triangles into tiles
-    double tiles_ms = 0;        // the tile pass: the three steps below, tile by tile
-    double total_ms = 0;
-    // The tile pass's steps: busy time summed over the workers, divided by
-    // the thread count, so that they add up to about tiles_ms.
     double rasterize_ms = 0;    // edge functions, depth test
     double shade_ms = 0;        // interpolation and the PBR shader
     double resolve_ms = 0;      // tonemap, quantize, write the images

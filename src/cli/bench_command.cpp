@@ -53,6 +53,7 @@ int run_bench(const BenchCommand& cmd) {
                                {"rasterize", &FrameStats::rasterize_ms, {}},
                                {"shade", &FrameStats::shade_ms, {}},
                                {"resolve", &FrameStats::resolve_ms, {}},
+                               {"triangles", &FrameStats::triangles_ms, {}},
                                {"tiles", &FrameStats::tiles_ms, {}}};
     std::vector<double> total;
     total.reserve(std::size_t(cmd.frames));
@@ -95,7 +96,7 @@ int run_bench(const BenchCommand& cmd) {
                 scene.width, scene.height, renderer.threads(), renderer.isa_name().c_str(), cmd.settings.tile_size,
                 cmd.frames, cmd.warmup);
     std::printf("frame        median %8.2f ms   min %8.2f   max %8.2f\n", frame.median, frame.min, frame.max);
-    std::printf("stage medians (the tile pass's steps: busy time over all workers / threads):\n");
+    std::printf("stage medians (steps within the triangle and tile passes: busy time over all workers / threads):\n");
     for (const Series& stage : stages)
         std::printf("  %-12s %8.2f ms\n", stage.name, summarize(stage.samples).median);
     std::printf("triangles in %llu, binned %llu; fragments rasterized %llu, shaded %llu; %zu lights\n",

@@ -62,9 +62,9 @@ void check_render_command(const RenderCommand& cmd) {
 
 void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage& image) {
     const tessera::FrameStats& s = renderer.last_frame_stats();
-    std::printf("%dx%d, %d threads, %s kernels: %.2f ms (vertex %.2f, clip+setup %.2f, binning %.2f, tiles %.2f)\n",
-                image.width, image.height, renderer.threads(), renderer.isa_name().c_str(), s.total_ms, s.vertex_ms,
-                s.clip_setup_ms, s.binning_ms, s.tiles_ms);
+    std::printf("%dx%d, %d threads, %s kernels: %.2f ms (vertex %.2f, triangles %.2f, tiles %.2f)\n", image.width,
+                image.height, renderer.threads(), renderer.isa_name().c_str(), s.total_ms, s.vertex_ms, s.triangles_ms,
+                s.tiles_ms);
     std::printf("triangles in %llu, binned %llu; fragments rasterized %llu, shaded %llu\n",
                 (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);

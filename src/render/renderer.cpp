@@ -1,5 +1,5 @@
 // The frame driver: the only place that knows every stage. A frame is
-//   vertex stage -> clip and set up triangles -> bin them into tiles ->
+//   vertex stage -> per chunk of triangles: clip, set up, bin into tiles ->
 //   per tile: rasterize, shade the visible pixels, resolve into the images.
 // Every pass runs in parallel; none depends on scheduling, so the image is the
 // same for any thread count.
@@ -44,13 +44,13 @@ simd::Isa parse_isa(const std::string& name) {
     throw std::invalid_argument("unknown ISA '" + name + "' (expected auto, scalar, sse4, avx2 or avx512)");
 }
 
-// One worker's memory for the tile pass, reserved once and reused.
-struct TileScratch {
+// One worker's memory, reserved once and reused, and its busy time this frame.
+struct WorkerScratch {
     raster::TileBuffers raster;
     shade::FragmentBuffer fragments;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
-    double rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;  // busy time this frame
+    double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
     void reserve(int tile_side) {
         raster.reset(tile_side);
@@ -98,7 +98,7 @@ struct Renderer::Frame {
     std::size_t chunk_count = 0;
     raster::TileGrid grid;
     shade::ShadingLights lights;
-    tbb::enumerable_thread_specific<TileScratch> scratch;
+    tbb::enumerable_thread_specific<WorkerScratch> scratch;
 
     explicit Frame(const RenderSettings& s)
         : settings(s), isa(parse_isa(s.isa)), arena(s.threads > 0 ? s.threads : tbb::info::default_concurrency()) {
@@ -108,10 +108,9 @@ struct Renderer::Frame {
 
     void run_vertex_stage(const Scene& scene);
     void cut_into_chunks(const Scene& scene);
-    void assemble_triangles(const Scene& scene);
-    void bin_triangles(const Scene& scene);
+    void assemble_and_bin(const Scene& scene);
     void render_tiles(const Scene& scene);
-    void render_tile(const Scene& scene, int tile, TileScratch& scratch);
+    void render_tile(const Scene& scene, int tile, WorkerScratch& scratch);
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -138,17 +137,14 @@ const RenderedImage& Renderer::render(const Scene& scene) {
         f.run_vertex_stage(scene);
         const auto t1 = Clock::now();
         f.cut_into_chunks(scene);
-        f.assemble_triangles(scene);
+        f.assemble_and_bin(scene);
         const auto t2 = Clock::now();
-        f.bin_triangles(scene);
-        const auto t3 = Clock::now();
         f.render_tiles(scene);
-        const auto t4 = Clock::now();
+        const auto t3 = Clock::now();
         f.stats.vertex_ms = ms_between(t0, t1);
-        f.stats.clip_setup_ms = ms_between(t1, t2);
-        f.stats.binning_ms = ms_between(t2, t3);
-        f.stats.tiles_ms = ms_between(t3, t4);
-        f.stats.total_ms = ms_between(t0, t4);
+        f.stats.triangles_ms = ms_between(t1, t2);
+        f.stats.tiles_ms = ms_between(t2, t3);
+        f.stats.total_ms = ms_between(t0, t3);
     });
     return f.image;
 }
@@ -206,11 +202,17 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
     }
 }
 
-void Renderer::Frame::assemble_triangles(const Scene& scene) {
+// Each chunk is binned right after it is assembled, while its triangles are
+// still in this core's cache.
+void Renderer::Frame::assemble_and_bin(const Scene& scene) {
     const raster::FrameVertices frame{vertices, outcodes, screen};
     const geometry::Viewport viewport{scene.width, scene.height};
     const geometry::GuardBand guard(scene.width, scene.height);
+    grid = raster::TileGrid(scene.width, scene.height, settings.tile_size);
+    for (WorkerScratch& s : scratch) s.clip_setup_ms = s.binning_ms = 0;
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t c) {
+        WorkerScratch& s = scratch.local();
+        const auto t0 = Clock::now();
         render::Chunk& chunk = chunks[c];
         const Object& object = scene.objects[chunk.object];
         const std::span<const std::uint32_t> indices(
@@ -220,14 +222,15 @@ void Renderer::Frame::assemble_triangles(const Scene& scene) {
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
                                    chunk.assembled);
+        const auto t1 = Clock::now();
+        chunk.bins.build(grid, chunk.assembled.triangles);
+        s.clip_setup_ms += ms_between(t0, t1);
+        s.binning_ms += ms_between(t1, Clock::now());
     });
+    const double threads = arena.max_concurrency();
+    for (const WorkerScratch& s : scratch)
+        stats.clip_setup_ms += s.clip_setup_ms / threads, stats.binning_ms += s.binning_ms / threads;
     for (std::size_t c = 0; c < chunk_count; ++c) stats.triangles_binned += chunks[c].assembled.triangles.size();
-}
-
-void Renderer::Frame::bin_triangles(const Scene& scene) {
-    grid = raster::TileGrid(scene.width, scene.height, settings.tile_size);
-    tbb::parallel_for(std::size_t(0), chunk_count,
-                      [&](std::size_t c) { chunks[c].bins.build(grid, chunks[c].assembled.triangles); });
 }
 
 void Renderer::Frame::render_tiles(const Scene& scene) {
@@ -243,15 +246,15 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     render::reserve_huge(image.display, 3 * pixels);
     image.display.resize(3 * pixels);
     lights.assign(scene.camera.position, scene.lights);
-    for (TileScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
+    for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
-        TileScratch& s = scratch.local();
+        WorkerScratch& s = scratch.local();
         if (s.raster.side != grid.tile_size) s.reserve(grid.tile_size);
         render_tile(scene, tile, s);
     });
     const double threads = arena.max_concurrency();
-    for (const TileScratch& s : scratch) {
+    for (const WorkerScratch& s : scratch) {
         stats.fragments_rasterized += s.counters.fragments;
         stats.fragments_shaded += s.fragments_shaded;
         stats.rasterize_ms += s.rasterize_ms / threads;
@@ -260,7 +263,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     }
 }
 
-void Renderer::Frame::render_tile(const Scene& scene, int tile, TileScratch& s) {
+void Renderer::Frame::render_tile(const Scene& scene, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
 
