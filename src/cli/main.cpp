@@ -129,6 +129,18 @@ int run_render(const RenderCommand& cmd) {
     return failed.empty() ? 0 : 1;
 }
 
+// The options render and bench share: output size and how the renderer runs.
+void add_frame_options(CLI::App* command, int& width, int& height, tessera::RenderSettings& settings) {
+    command->add_option("--width", width, "Override the scene's image width in pixels")
+        ->check(CLI::Range(1, tessera::kMaxImageDimension));
+    command->add_option("--height", height, "Override the scene's image height in pixels")
+        ->check(CLI::Range(1, tessera::kMaxImageDimension));
+    command->add_option("--threads", settings.threads, "Worker threads (0 = one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
+    command->add_option("--tile-size", settings.tile_size, "Screen tile side in pixels (power of two, 8-256)");
+    command->add_option("--isa", settings.isa, "SIMD kernels: auto, scalar, sse4, avx2, avx512");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -145,14 +157,7 @@ int main(int argc, char** argv) {
                            "render, several files); {scene} stands for the scene file's stem and is required "
                            "with several scenes")
         ->required();
-    render_app->add_option("--width", render.width, "Override the scene's image width in pixels")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    render_app->add_option("--height", render.height, "Override the scene's image height in pixels")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    render_app->add_option("--threads", render.settings.threads, "Worker threads (0 = one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
-    render_app->add_option("--tile-size", render.settings.tile_size, "Screen tile side in pixels (power of two, 8-256)");
-    render_app->add_option("--isa", render.settings.isa, "Shading kernels: auto, scalar, sse4, avx2, avx512");
+    add_frame_options(render_app, render.width, render.height, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
 
     tessera::cli::BenchCommand bench;
@@ -160,14 +165,7 @@ int main(int argc, char** argv) {
     bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
     bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
     bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
-    bench_app->add_option("--width", bench.width, "Override the scene's image width")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    bench_app->add_option("--height", bench.height, "Override the scene's image height")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    bench_app->add_option("--threads", bench.settings.threads, "Worker threads (0 = one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
-    bench_app->add_option("--tile-size", bench.settings.tile_size, "Screen tile side in pixels");
-    bench_app->add_option("--isa", bench.settings.isa, "Shading kernels: auto, scalar, sse4, avx2, avx512");
+    add_frame_options(bench_app, bench.width, bench.height, bench.settings);
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
     bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
 

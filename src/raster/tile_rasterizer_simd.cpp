@@ -3,15 +3,9 @@
 // tile_rasterizer.cpp, lane by lane, so both give bit-identical buffers.
 #include <cstdint>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <xsimd/xsimd.hpp>
-#pragma GCC diagnostic pop
+#include "simd/kernel_prelude.hpp"
 
 #include "raster/raster_kernels.hpp"
-
-#define TESSERA_SIMD_PASTE_(name, suffix) name##_##suffix
-#define TESSERA_SIMD_PASTE(name, suffix) TESSERA_SIMD_PASTE_(name, suffix)
 
 namespace tessera::raster {
 namespace {
@@ -73,7 +67,7 @@ void rasterize_block(const EdgeBlock32& b, const TileView& tile, RasterCounters&
 
 }  // namespace
 
-void TESSERA_SIMD_PASTE(rasterize_block, TESSERA_SIMD_SUFFIX)(const EdgeBlock32& block, const TileView& tile,
+void TESSERA_SIMD_ENTRY(rasterize_block)(const EdgeBlock32& block, const TileView& tile,
                                                               RasterCounters& counters) {
     rasterize_block(block, tile, counters);
 }

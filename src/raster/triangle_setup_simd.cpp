@@ -5,16 +5,10 @@
 // Larger triangles are handed back to the scalar int64 code.
 #include <cstdint>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <xsimd/xsimd.hpp>
-#pragma GCC diagnostic pop
+#include "simd/kernel_prelude.hpp"
 
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
-
-#define TESSERA_SIMD_PASTE_(name, suffix) name##_##suffix
-#define TESSERA_SIMD_PASTE(name, suffix) TESSERA_SIMD_PASTE_(name, suffix)
 
 namespace tessera::raster {
 namespace {
@@ -93,7 +87,7 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
 
 }  // namespace
 
-void TESSERA_SIMD_PASTE(setup_batch, TESSERA_SIMD_SUFFIX)(const SetupBatchInput& in, SetupBatchOutput& out) {
+void TESSERA_SIMD_ENTRY(setup_batch)(const SetupBatchInput& in, SetupBatchOutput& out) {
     setup_batch(in, out);
 }
 

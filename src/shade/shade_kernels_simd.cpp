@@ -10,24 +10,10 @@
 // NDF·G / (4·N·V·N·L + 0.0001) is evaluated with one division.
 #include <cstddef>
 
-// g++ 12 warns that _mm512_undefined_ps() & co. are "used uninitialized" once
-// xsimd's exp/log are inlined: false positives inside the system header, whose
-// lines are what this push/pop covers.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <xsimd/xsimd.hpp>
-#pragma GCC diagnostic pop
+#include "simd/kernel_prelude.hpp"
 
 #include "shade/pbr_reference.hpp"
 #include "shade/shade_kernels.hpp"
-
-#if !defined(TESSERA_SIMD_ARCH) || !defined(TESSERA_SIMD_SUFFIX)
-#error "build shade_kernels_simd.cpp with tessera_add_simd_kernels(): it defines TESSERA_SIMD_ARCH/_SUFFIX"
-#endif
-
-#define TESSERA_SIMD_PASTE_(name, suffix) name##_##suffix
-#define TESSERA_SIMD_PASTE(name, suffix) TESSERA_SIMD_PASTE_(name, suffix)
-#define TESSERA_SIMD_ENTRY(name) TESSERA_SIMD_PASTE(name, TESSERA_SIMD_SUFFIX)
 
 namespace tessera::shade {
 namespace {

@@ -12,21 +12,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#include <xsimd/xsimd.hpp>
-#pragma GCC diagnostic pop
+#include "simd/kernel_prelude.hpp"
 
 #include "shade/shade_kernels.hpp"
 #include "shade/texture.hpp"
-
-#if !defined(TESSERA_SIMD_ARCH) || !defined(TESSERA_SIMD_SUFFIX)
-#error "build texture_sampling_simd.cpp with tessera_add_simd_kernels(): it defines TESSERA_SIMD_ARCH/_SUFFIX"
-#endif
-
-#define TESSERA_SIMD_PASTE_(name, suffix) name##_##suffix
-#define TESSERA_SIMD_PASTE(name, suffix) TESSERA_SIMD_PASTE_(name, suffix)
-#define TESSERA_SIMD_ENTRY(name) TESSERA_SIMD_PASTE(name, TESSERA_SIMD_SUFFIX)
 
 namespace tessera::shade {
 namespace {
