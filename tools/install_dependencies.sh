@@ -1,16 +1,22 @@
 #!/usr/bin/env bash
 # Installs, from Debian 12's packages, whatever Tessera needs that is missing.
 # Run as root (or with sudo available). Installs nothing when all is present.
+#   tools/install_dependencies.sh          everything: build, tests, tools, fuzzing
+#   tools/install_dependencies.sh render   only what building the tessera command needs
 set -euo pipefail
 packages=(
   g++ make cmake pkg-config
-  libglm-dev libtbb-dev libopenimageio-dev openimageio-tools libxsimd-dev
-  doctest-dev libtomlplusplus-dev libcli11-dev libbenchmark-dev
-  # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
-  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
-  # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
-  clang libclang-rt-14-dev
+  libglm-dev libtbb-dev libopenimageio-dev libxsimd-dev libtomlplusplus-dev libcli11-dev
 )
+if [ "${1:-all}" != render ]; then
+  packages+=(
+    doctest-dev openimageio-tools libbenchmark-dev
+    # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
+    libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+    # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
+    clang libclang-rt-14-dev
+  )
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
