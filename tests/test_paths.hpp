@@ -1,12 +1,22 @@
 // Where the tests find the repository's scenes and golden images, and where they may write.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
+#include <vector>
 
 namespace tessera::test {
 
 inline std::filesystem::path source_dir() { return TESSERA_SOURCE_DIR; }
 inline std::filesystem::path scene_path(const char* name) { return source_dir() / "scenes" / name; }
+// Every scene file in scenes/, sorted by name.
+inline std::vector<std::filesystem::path> scene_files() {
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& entry : std::filesystem::directory_iterator(source_dir() / "scenes"))
+        if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+    std::sort(scenes.begin(), scenes.end());
+    return scenes;
+}
 // A folder in the build tree for files the tests write.
 inline std::filesystem::path output_dir(const char* name) {
     const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "test_output" / name;

@@ -11,10 +11,7 @@ using namespace tessera;
 // Every scene in scenes/ has a golden image golden/<scene>.png made by
 // tools/regenerate_golden.sh; a render that drifts from it fails here.
 TEST_CASE("every scene matches its golden image") {
-    std::vector<std::filesystem::path> scenes;
-    for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() / "scenes"))
-        if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
-    std::sort(scenes.begin(), scenes.end());
+    const std::vector<std::filesystem::path> scenes = test::scene_files();
     REQUIRE_FALSE(scenes.empty());
     Renderer renderer;
     for (const auto& scene_file : scenes) {

@@ -12,10 +12,7 @@
 using namespace tessera;
 
 TEST_CASE("every bundled scene is bit-identical for 1, 2, 3, 7 and 16 threads and across runs") {
-    std::vector<std::filesystem::path> scenes;
-    for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() / "scenes"))
-        if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
-    std::sort(scenes.begin(), scenes.end());
+    const std::vector<std::filesystem::path> scenes = test::scene_files();
     REQUIRE(scenes.size() >= 2);
     for (const std::filesystem::path& path : scenes) {
         CAPTURE(path.string());
