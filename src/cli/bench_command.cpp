@@ -73,7 +73,9 @@ int run_bench(const BenchCommand& cmd) {
     const double shaded = double(std::max<std::uint64_t>(s.fragments_shaded, 1));
     const double mfrag_per_s = double(s.fragments_shaded) / (frame.median * 1e3);
     // Shading time (interpolation included) per fragment and light, on one thread.
-    const double shade_median = summarize(stages[4].samples).median;
+    const auto shade_stage = std::find_if(stages.begin(), stages.end(),
+                                          [](const Series& stage) { return stage.field == &FrameStats::shade_ms; });
+    const double shade_median = summarize(shade_stage->samples).median;
     const double ns_per_fragment_light = shade_median * 1e6 * renderer.threads() / (shaded * light_count);
 
     if (cmd.json) {

@@ -35,10 +35,14 @@ void for_each_pixel(const raster::TileBuffers& coverage, const raster::TileRect&
 
 }  // namespace
 
-void clear_tile(const raster::TileRect& rect, const glm::vec3& clear_color, RenderedImage& image) {
-    const glm::vec3 clear_radiance = radiance_for_display(clear_color);
-    const std::uint8_t clear_display[3] = {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g),
-                                           quantize_unorm8(clear_color.b)};
+ClearValues clear_values(const glm::vec3& clear_color) {
+    return {radiance_for_display(clear_color),
+            {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g), quantize_unorm8(clear_color.b)}};
+}
+
+void clear_tile(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image) {
+    const glm::vec3& clear_radiance = clear.radiance;
+    const std::uint8_t* clear_display = clear.display;
     for (int y = rect.y0; y < rect.y1; ++y) {
         const std::size_t first = 3 * (std::size_t(y) * image.width + rect.x0);
         const std::size_t end = first + 3 * std::size_t(rect.width());
@@ -53,11 +57,10 @@ void clear_tile(const raster::TileRect& rect, const glm::vec3& clear_color, Rend
 }
 
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
-                  const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
+                  const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image) {
-    const glm::vec3 clear_radiance = radiance_for_display(clear_color);
-    const std::uint8_t clear_display[3] = {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g),
-                                           quantize_unorm8(clear_color.b)};
+    const glm::vec3& clear_radiance = clear.radiance;
+    const std::uint8_t* clear_display = clear.display;
     if (!image.radiance.empty()) for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
         float* radiance = &image.radiance[i];
         if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];

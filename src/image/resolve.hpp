@@ -22,16 +22,23 @@ inline std::uint8_t quantize_unorm8(float display) {
 // colour (the tonemap's inverse), kept finite: the EXR's background.
 glm::vec3 radiance_for_display(const glm::vec3& display);
 
+// The background as each image stores it, worked out once per frame.
+struct ClearValues {
+    glm::vec3 radiance;           // radiance_for_display(clear colour)
+    std::uint8_t display[3];      // the clear colour quantized
+};
+ClearValues clear_values(const glm::vec3& clear_color);
+
 // Writes one tile of the frame, each pixel once: covered pixels take the next
 // of `count` shaded values (row-major order, as gathered), the others the
 // clear colour. Radiance goes to the image as it is (if the image keeps
 // radiance); then `shaded` is tonemapped in place (Reinhard, gamma) and
 // quantized for the display image.
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
-                  const shade::RadianceOutputs& shaded, const glm::vec3& clear_color, simd::Isa isa,
+                  const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image);
 
 // Writes the clear colour over a tile no triangle touched.
-void clear_tile(const raster::TileRect& rect, const glm::vec3& clear_color, RenderedImage& image);
+void clear_tile(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image);
 
 }  // namespace tessera::image

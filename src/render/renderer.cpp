@@ -110,7 +110,7 @@ struct Renderer::Frame {
     void cut_into_chunks(const Scene& scene);
     void assemble_and_bin(const Scene& scene);
     void render_tiles(const Scene& scene);
-    void render_tile(const Scene& scene, int tile, WorkerScratch& scratch);
+    void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -246,12 +246,13 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     render::reserve_huge(image.display, 3 * pixels);
     image.display.resize(3 * pixels);
     lights.assign(scene.camera.position, scene.lights);
+    const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
         WorkerScratch& s = scratch.local();
         if (s.raster.side != grid.tile_size) s.reserve(grid.tile_size);
-        render_tile(scene, tile, s);
+        render_tile(scene, clear, tile, s);
     });
     const double threads = arena.max_concurrency();
     for (const WorkerScratch& s : scratch) {
@@ -263,7 +264,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     }
 }
 
-void Renderer::Frame::render_tile(const Scene& scene, int tile, WorkerScratch& s) {
+void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
 
@@ -288,7 +289,7 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, WorkerScratch& s
     }
     const auto t1 = Clock::now();
     if (s.counters.depth_passed == passed_before) {  // nothing drawn here: background only
-        image::clear_tile(rect, scene.clear_color, image);
+        image::clear_tile(rect, clear, image);
         s.resolve_ms += ms_between(t1, Clock::now());
         s.rasterize_ms += ms_between(t0, t1);
         return;
@@ -308,7 +309,7 @@ void Renderer::Frame::render_tile(const Scene& scene, int tile, WorkerScratch& s
     s.fragments_shaded += count;
     const auto t2 = Clock::now();
 
-    image::resolve_tile(s.raster, rect, count, shaded, scene.clear_color, isa, image);
+    image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
     const auto t3 = Clock::now();
     s.rasterize_ms += ms_between(t0, t1);
     s.shade_ms += ms_between(t1, t2);
