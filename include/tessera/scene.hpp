@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -13,23 +14,80 @@
 
 namespace tessera {
 
+namespace texture {
+class Texture;  // texture/texture.hpp: an image with its mip chain, loaded with the scene
+}
+
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
 inline constexpr long long kMaxImagePixels = 1LL << 27;  // width × height: 134M pixels, ~2 GB of frame at 15 B/pixel
 
-// The reference shader's material inputs (untextured demo).
+// How a texture map extends past [0, 1]: GL_REPEAT or GL_CLAMP_TO_EDGE.
+enum class TextureWrap { repeat, clamp_to_edge };
+
+// A material's use of one texture: which image, and how it wraps.
+struct TextureSlot {
+    std::int32_t texture = -1;  // index into Scene::textures; -1 = no map
+    TextureWrap wrap = TextureWrap::repeat;
+    bool present() const { return texture >= 0; }
+};
+
+// How a material's albedo map turns into linear albedo.
+enum class AlbedoDecode {
+    // The texels are linear already (the texture was decoded from sRGB at load,
+    // before filtering, as GL does for GL_SRGB8 textures: glTF base colour).
+    linear,
+    // The reference's textured demo: pow(texture(albedoMap, uv).rgb, 2.2),
+    // the power applied after filtering the stored values.
+    pow_2_2_after_filter,
+};
+
+// The reference shader's material inputs. Each map multiplies the factor
+// it belongs to (glTF's rule): a scene file that gives a map and no factor
+// gets factor 1.
 struct Material {
     glm::vec3 albedo{0.5f, 0.0f, 0.0f};  // linear RGB reflectance, each in [0, 1]
     float metallic = 0.0f;                // [0, 1]
     float roughness = 0.5f;               // [0, 1]; GGX alpha = roughness²
     float ao = 1.0f;                      // ambient occlusion, [0, 1]
+    glm::vec3 emissive{0.0f};             // HDR radiance added to the shaded colour, >= 0
+
+    TextureSlot albedo_map{};     // RGB
+    AlbedoDecode albedo_decode = AlbedoDecode::linear;
+    TextureSlot metallic_map{};   // channel metallic_channel
+    int metallic_channel = 0;   // 0..3 = R, G, B, A (glTF: B)
+    TextureSlot roughness_map{};  // channel roughness_channel
+    int roughness_channel = 0;  // (glTF: G)
+    TextureSlot ao_map{};         // R; ao = 1 + ao_strength·(texel − 1)
+    float ao_strength = 1.0f;
+    TextureSlot normal_map{};     // tangent-space normals, RGB = xyz·0.5 + 0.5
+    float normal_scale = 1.0f;  // scales the map's x and y (glTF normalTexture.scale)
+    TextureSlot emissive_map{};   // RGB, multiplies `emissive`
+
+    bool has_maps() const {
+        return albedo_map.present() || metallic_map.present() || roughness_map.present() || ao_map.present() ||
+               normal_map.present() || emissive_map.present();
+    }
 };
 
-// A point light: radiance arriving at distance d is color / d² (the reference's
-// inverse-square falloff), so color is in radiance·distance² units.
-struct PointLight {
-    glm::vec3 position{0.0f};  // world space
-    glm::vec3 color{1.0f};     // linear RGB, >= 0
+enum class LightType { point, directional, spot };
+
+// A light (reference/pbr_lighting.md). Point and spot lights fall off with the
+// inverse square of distance: radiance arriving at distance d is color / d², so
+// color is in radiance·distance² units; a directional light's color is the
+// radiance itself, arriving along `direction` everywhere.
+struct Light {
+    glm::vec3 position{0.0f};              // world space; point and spot
+    glm::vec3 color{1.0f};                 // linear RGB, >= 0
+    LightType type = LightType::point;
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // where the light travels, unit length; directional and spot
+    // Spot cone half-angles in degrees, 0 <= inner < outer <= 90: full radiance
+    // inside `inner`, none outside `outer`, the reference's clamp ramp of cos θ between.
+    float inner_cone_degrees = 0.0f;
+    float outer_cone_degrees = 45.0f;
+    // Distance past which this light is not shaded (per-tile light culling);
+    // 0 = unlimited, never culled. Point and spot only.
+    float range = 0.0f;
 };
 
 // A perspective camera, as glm::perspective and glm::lookAt take it.
@@ -47,7 +105,8 @@ struct Mesh {
     std::string name;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec2> uvs;            // empty, or one per position; (0, 0) = top-left of a texture
+    std::vector<glm::vec4> tangents;       // empty, or one per position: xyz and handedness w = ±1 (glTF TANGENT)
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
 };
 
@@ -64,8 +123,9 @@ struct Scene {
     int height = 720;
     glm::vec3 clear_color{0.1f, 0.1f, 0.1f};  // display-referred, as glClearColor
     Camera camera;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
     std::vector<Material> materials;
+    std::vector<std::shared_ptr<const texture::Texture>> textures;  // what TextureSlot::texture indexes
     std::vector<Mesh> meshes;
     std::vector<Object> objects;
 };

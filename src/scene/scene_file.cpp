@@ -335,7 +335,7 @@ private:
                                                 std::string(kSupportedLightTypes));
                 }
             }
-            PointLight light;
+            Light light;
             light.position = read_vec3(require(table, "position", name), child(name, "position"));
             light.color = read_vec3(require(table, "color", name), child(name, "color"), kNonNegative);
             scene.lights.push_back(light);

@@ -66,10 +66,22 @@ void validate_lights_and_materials(const Scene& scene) {
         fail(scene, "clear colour components must be in [0, 1]");
     }
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        const PointLight& light = scene.lights[i];
+        const Light& light = scene.lights[i];
         if (!finite(light.position) || !finite(light.color) || light.color.x < 0.0f || light.color.y < 0.0f ||
             light.color.z < 0.0f) {
             fail(scene, "lights[", i, "] must have a finite position and a finite colour >= 0");
+        }
+        if (light.type != LightType::point &&
+            !(finite(light.direction) && std::abs(glm::length(light.direction) - 1.0f) < 1e-3f)) {
+            fail(scene, "lights[", i, "] needs a finite direction of unit length");
+        }
+        if (light.type == LightType::spot &&
+            !(light.inner_cone_degrees >= 0.0f && light.inner_cone_degrees < light.outer_cone_degrees &&
+              light.outer_cone_degrees <= 90.0f)) {
+            fail(scene, "lights[", i, "]: spot cone angles need 0 <= inner < outer <= 90 degrees");
+        }
+        if (!(light.range >= 0.0f) || !std::isfinite(light.range)) {
+            fail(scene, "lights[", i, "]: range must be finite and >= 0 (0 = unlimited)");
         }
     }
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
@@ -77,6 +89,21 @@ void validate_lights_and_materials(const Scene& scene) {
         if (!(in_unit_interval(m.albedo.x) && in_unit_interval(m.albedo.y) && in_unit_interval(m.albedo.z) &&
               in_unit_interval(m.metallic) && in_unit_interval(m.roughness) && in_unit_interval(m.ao))) {
             fail(scene, "materials[", i, "]: albedo, metallic, roughness and ao must be in [0, 1]");
+        }
+        if (!finite(m.emissive) || m.emissive.x < 0.0f || m.emissive.y < 0.0f || m.emissive.z < 0.0f ||
+            !std::isfinite(m.ao_strength) || !std::isfinite(m.normal_scale)) {
+            fail(scene, "materials[", i, "]: emissive must be finite and >= 0, ao strength and normal scale finite");
+        }
+        for (const TextureSlot* slot : {&m.albedo_map, &m.metallic_map, &m.roughness_map, &m.ao_map, &m.normal_map,
+                                        &m.emissive_map}) {
+            if (slot->texture >= std::int64_t(scene.textures.size()) ||
+                (slot->present() && !scene.textures[std::size_t(slot->texture)])) {
+                fail(scene, "materials[", i, "] uses texture ", slot->texture, " but the scene has ",
+                     scene.textures.size(), " textures");
+            }
+        }
+        if (m.metallic_channel < 0 || m.metallic_channel > 3 || m.roughness_channel < 0 || m.roughness_channel > 3) {
+            fail(scene, "materials[", i, "]: texture channels are 0..3 (R, G, B, A)");
         }
     }
 }
@@ -91,6 +118,9 @@ void validate_meshes(const Scene& scene) {
         }
         if (!mesh.uvs.empty() && mesh.uvs.size() != vertices) {
             fail(scene, mesh_label(scene, m), " has ", mesh.uvs.size(), " uvs for ", vertices, " positions");
+        }
+        if (!mesh.tangents.empty() && mesh.tangents.size() != vertices) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.tangents.size(), " tangents for ", vertices, " positions");
         }
         if (mesh.indices.size() % 3 != 0) {
             fail(scene, mesh_label(scene, m), " has ", mesh.indices.size(),

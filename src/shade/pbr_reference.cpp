@@ -32,7 +32,7 @@ glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0) {
 }
 
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
-                    const glm::vec3& cam_pos, std::span<const PointLight> lights) {
+                    const glm::vec3& cam_pos, std::span<const Light> lights) {
     const glm::vec3& albedo = material.albedo;
     const float metallic = material.metallic;
     const float roughness = material.roughness;
@@ -42,7 +42,7 @@ glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const M
     const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);
 
     glm::vec3 lo(0.0f);
-    for (const PointLight& light : lights) {
+    for (const Light& light : lights) {
         const glm::vec3 l = glm::normalize(light.position - world_pos);
         const glm::vec3 h = glm::normalize(v + l);
         const float distance = glm::length(light.position - world_pos);

@@ -24,7 +24,7 @@ glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0);
 // Scene-linear HDR radiance leaving world_pos towards cam_pos (the GLSL's `color`
 // before tonemapping). normal need not be unit length: it is normalized here, as the GLSL does.
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
-                    const glm::vec3& cam_pos, std::span<const PointLight> lights);
+                    const glm::vec3& cam_pos, std::span<const Light> lights);
 
 // Reinhard c / (c + 1), then gamma c^(1/2.2): display-referred, in [0, 1].
 glm::vec3 tonemap_reinhard(const glm::vec3& hdr);

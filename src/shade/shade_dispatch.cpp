@@ -21,13 +21,13 @@ TESSERA_DECLARE_SIMD_ENTRIES(avx2)
 TESSERA_DECLARE_SIMD_ENTRIES(avx512)
 #undef TESSERA_DECLARE_SIMD_ENTRIES
 
-void ShadingLights::assign(const glm::vec3& camera_position, std::span<const PointLight> lights) {
+void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Light> lights) {
     cam_pos = camera_position;
     for (std::vector<float>* column : {&pos_x, &pos_y, &pos_z, &color_r, &color_g, &color_b}) {
         column->clear();
         column->reserve(lights.size());
     }
-    for (const PointLight& light : lights) {
+    for (const Light& light : lights) {
         pos_x.push_back(light.position.x);
         pos_y.push_back(light.position.y);
         pos_z.push_back(light.position.z);
@@ -43,14 +43,14 @@ glm::vec3 load_vec3(const float* x, const float* y, const float* z, std::size_t 
 
 void shade_fragments_scalar(const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
     // Rebuilt per call (once per tile batch, not per fragment): the SoA lights back to the reference's form.
-    std::vector<PointLight> point_lights(lights.count());
+    std::vector<Light> point_lights(lights.count());
     for (std::size_t j = 0; j < point_lights.size(); ++j) {
         point_lights[j].position = load_vec3(lights.pos_x.data(), lights.pos_y.data(), lights.pos_z.data(), j);
         point_lights[j].color = load_vec3(lights.color_r.data(), lights.color_g.data(), lights.color_b.data(), j);
     }
     for (std::size_t i = 0; i < in.count; ++i) {
-        const Material material{load_vec3(in.albedo_r, in.albedo_g, in.albedo_b, i), in.metallic[i], in.roughness[i],
-                                in.ao[i]};
+        const Material material{.albedo = load_vec3(in.albedo_r, in.albedo_g, in.albedo_b, i), .metallic = in.metallic[i],
+                                .roughness = in.roughness[i], .ao = in.ao[i]};
         const glm::vec3 radiance =
             shade_pbr(load_vec3(in.world_x, in.world_y, in.world_z, i),
                       load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos, point_lights);

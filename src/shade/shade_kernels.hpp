@@ -11,14 +11,13 @@
 #include <glm/glm.hpp>
 
 #include "simd/isa.hpp"
+#include "simd/lane_padding.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::shade {
 
-// Arrays handed to the kernels hold a multiple of this many floats, so a kernel
-// may run whole vectors past `count`: lanes beyond it compute values nobody reads.
-inline constexpr std::size_t kLanePadding = 16;
-inline constexpr std::size_t padded_count(std::size_t n) { return (n + kLanePadding - 1) / kLanePadding * kLanePadding; }
+using simd::kLanePadding;  // arrays hold whole vectors past `count`
+using simd::padded_count;
 
 // Fragments to shade, one array per scalar input. All pointers address at
 // least padded_count(count) floats.
@@ -51,7 +50,7 @@ struct ShadingLights {
     std::vector<float> pos_x, pos_y, pos_z;    // world space
     std::vector<float> color_r, color_g, color_b;
     std::size_t count() const { return pos_x.size(); }
-    void assign(const glm::vec3& camera_position, std::span<const PointLight> lights);
+    void assign(const glm::vec3& camera_position, std::span<const Light> lights);
 };
 
 // Which code runs the kernels. `scalar` calls the reference shader per fragment.

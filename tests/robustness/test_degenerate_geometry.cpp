@@ -30,7 +30,7 @@ Scene base_scene() {
     scene.camera.position = {0.0f, 0.0f, 3.0f};
     scene.camera.target = {0.0f, 0.0f, 0.0f};
     scene.lights.push_back({{1.0f, 2.0f, 4.0f}, {30.0f, 30.0f, 30.0f}});
-    scene.materials.push_back(Material{{0.8f, 0.3f, 0.2f}, 0.2f, 0.4f, 1.0f});
+    scene.materials.push_back(Material{.albedo = {0.8f, 0.3f, 0.2f}, .metallic = 0.2f, .roughness = 0.4f, .ao = 1.0f});
     return scene;
 }
 

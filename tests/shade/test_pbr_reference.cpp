@@ -103,8 +103,8 @@ TEST_CASE("shade_pbr: light and camera straight above the surface") {
     const glm::vec3 normal(0.0f, 0.0f, 3.0f);  // not unit: the shader normalizes
     const glm::vec3 cam_pos = world_pos + glm::vec3(0.0f, 0.0f, 5.0f);
     const double distance = 3.0;
-    const PointLight light{world_pos + glm::vec3(0.0f, 0.0f, float(distance)), glm::vec3(300.0f, 150.0f, 30.0f)};
-    const Material material{glm::vec3(0.8f, 0.4f, 0.2f), 0.25f, 0.5f, 0.7f};
+    const Light light{world_pos + glm::vec3(0.0f, 0.0f, float(distance)), glm::vec3(300.0f, 150.0f, 30.0f)};
+    const Material material{.albedo = glm::vec3(0.8f, 0.4f, 0.2f), .metallic = 0.25f, .roughness = 0.5f, .ao = 0.7f};
 
     const glm::dvec3 albedo(material.albedo);
     const double metallic = material.metallic, ao = material.ao;
@@ -115,7 +115,7 @@ TEST_CASE("shade_pbr: light and camera straight above the surface") {
     const glm::dvec3 radiance = glm::dvec3(light.color) / (distance * distance);
     const glm::dvec3 expected = 0.03 * albedo * ao + (k_d * albedo / kPiD + specular) * radiance;
 
-    const std::vector<PointLight> lights{light};
+    const std::vector<Light> lights{light};
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, lights), expected,
                ggx_peak_tolerance(alpha2(material.roughness)));
 
@@ -123,7 +123,7 @@ TEST_CASE("shade_pbr: light and camera straight above the surface") {
     const glm::dvec3 ambient = 0.03 * albedo * ao;
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, {}), ambient);
     // (Not straight below: with L = −V, H = normalize(0) is NaN, in the GLSL too.)
-    const std::vector<PointLight> grazing{{world_pos + glm::vec3(4.0f, 0.0f, 0.0f), glm::vec3(100.0f)},
+    const std::vector<Light> grazing{{world_pos + glm::vec3(4.0f, 0.0f, 0.0f), glm::vec3(100.0f)},
                                           {world_pos + glm::vec3(1.0f, 0.0f, -2.0f), glm::vec3(100.0f)}};
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, grazing), ambient);
 }
@@ -133,8 +133,8 @@ TEST_CASE("shade_pbr: camera and light mirrored at 45° so H = N") {
     const glm::vec3 world_pos(0.0f);
     const glm::vec3 normal(0.0f, 0.0f, 1.0f);
     const glm::vec3 cam_pos(4.0f, 0.0f, 4.0f);
-    const PointLight light{glm::vec3(-2.0f, 0.0f, 2.0f), glm::vec3(50.0f, 100.0f, 200.0f)};  // distance² = 8
-    const Material material{glm::vec3(0.9f, 0.6f, 0.3f), 0.3f, 0.6f, 1.0f};
+    const Light light{glm::vec3(-2.0f, 0.0f, 2.0f), glm::vec3(50.0f, 100.0f, 200.0f)};  // distance² = 8
+    const Material material{.albedo = glm::vec3(0.9f, 0.6f, 0.3f), .metallic = 0.3f, .roughness = 0.6f, .ao = 1.0f};
 
     const glm::dvec3 albedo(material.albedo);
     const double metallic = material.metallic, c = std::sqrt(0.5);
@@ -148,11 +148,11 @@ TEST_CASE("shade_pbr: camera and light mirrored at 45° so H = N") {
     const glm::dvec3 expected = 0.03 * albedo * double(material.ao) + (k_d * albedo / kPiD + specular) * radiance * c;
 
     const double tolerance = ggx_peak_tolerance(alpha2(material.roughness));
-    const std::vector<PointLight> lights{light};
+    const std::vector<Light> lights{light};
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, lights), expected, tolerance);
 
     // Lights add: the same light twice doubles the direct part.
-    const std::vector<PointLight> twice{light, light};
+    const std::vector<Light> twice{light, light};
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, twice),
                expected + (k_d * albedo / kPiD + specular) * radiance * c, tolerance);
 }

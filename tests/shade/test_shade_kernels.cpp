@@ -57,7 +57,8 @@ struct Fragments {
     glm::vec3 world_pos(std::size_t i) const { return {world_x[i], world_y[i], world_z[i]}; }
     glm::vec3 normal(std::size_t i) const { return {normal_x[i], normal_y[i], normal_z[i]}; }
     Material material(std::size_t i) const {
-        return {glm::vec3(albedo_r[i], albedo_g[i], albedo_b[i]), metallic[i], roughness[i], ao[i]};
+        return {.albedo = glm::vec3(albedo_r[i], albedo_g[i], albedo_b[i]), .metallic = metallic[i], .roughness = roughness[i],
+                .ao = ao[i]};
     }
 };
 
@@ -81,7 +82,7 @@ struct Radiance {
 
 struct RandomScene {
     glm::vec3 cam_pos;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;
     Fragments fragments;
 };
 
@@ -114,7 +115,7 @@ RandomScene random_scene(std::mt19937& rng, std::size_t count) {
             p = uniform3(rng, -8.0f, 8.0f);
         } while (glm::length(p - scene.cam_pos) < 0.5f ||
                  std::any_of(scene.lights.begin(), scene.lights.end(),
-                             [&](const PointLight& l) { return glm::length(p - l.position) < 0.5f; }));
+                             [&](const Light& l) { return glm::length(p - l.position) < 0.5f; }));
         // Unit normals scaled by 0.5..2: the shader must normalize.
         const glm::vec3 n = unit_vector(rng) * uniform(rng, 0.5f, 2.0f);
         f.world_x.push_back(p.x), f.world_y.push_back(p.y), f.world_z.push_back(p.z);
@@ -191,7 +192,7 @@ glm::dvec3 conditioning_allowance(const RandomScene& scene, std::size_t i) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(f.normal(i)));
     const glm::dvec3 v = glm::normalize(glm::dvec3(scene.cam_pos) - world_pos);
     glm::dvec3 allowance(0.0);
-    for (const PointLight& light : scene.lights) {
+    for (const Light& light : scene.lights) {
         const glm::dvec3 to_light = glm::dvec3(light.position) - world_pos;
         const glm::dvec3 l = glm::normalize(to_light);
         const glm::dvec3 h = glm::normalize(v + l);

@@ -403,7 +403,7 @@ struct GlReferenceRenderer::State {
         glUniform3fv(u.cam_pos, 1, glm::value_ptr(scene.camera.position));
         if (!object_ids && !scene.lights.empty()) {
             std::vector<glm::vec3> positions, colors;
-            for (const PointLight& light : scene.lights) {
+            for (const Light& light : scene.lights) {
                 positions.push_back(light.position);
                 colors.push_back(light.color);
             }

@@ -54,7 +54,7 @@ FragmentBuffer make_fragments(std::mt19937& rng) {
 
 // The four lights of scenes/spheres.toml, then more at random in front of the grid.
 ShadingLights make_lights(std::size_t count, std::mt19937& rng) {
-    std::vector<PointLight> lights = {{{-10, 10, 10}, {300, 300, 300}},
+    std::vector<Light> lights = {{{-10, 10, 10}, {300, 300, 300}},
                                       {{10, 10, 10}, {300, 300, 300}},
                                       {{-10, -10, 10}, {300, 300, 300}},
                                       {{10, -10, 10}, {300, 300, 300}}};

@@ -14,14 +14,13 @@
 #include <doctest/doctest.h>
 #include <OpenImageIO/imagebuf.h>
 
-#include "shade/shade_kernels.hpp"
-#include "shade/texture.hpp"
+#include "texture/texture.hpp"
 #include "test_paths.hpp"
 
 namespace {
 
 using namespace tessera;
-using namespace tessera::shade;
+using namespace tessera::texture;
 
 // A width×height RGBA texture whose texels are all different: channel c of
 // texel (x, y) is pattern(x, y, c).

@@ -6,7 +6,7 @@
 // TESSERA_SIMD_SUFFIX, everything else is in an anonymous namespace.
 //
 // Same steps, same order and same names as the scalar reference, and built with
-// -ffp-contract=off (src/shade/CMakeLists.txt): an FMA in x = u·size − ½ would
+// -ffp-contract=off (src/texture/CMakeLists.txt): an FMA in x = u·size − ½ would
 // move the bilinear weight by up to half an ulp of u·size (3e-5 on a 512-texel
 // side). So the results equal the scalar sampler's; the test allows 1e-5.
 #include <cstddef>
@@ -14,10 +14,10 @@
 
 #include "simd/kernel_prelude.hpp"
 
-#include "shade/shade_kernels.hpp"
-#include "shade/texture.hpp"
+#include "simd/lane_padding.hpp"
+#include "texture/texture.hpp"
 
-namespace tessera::shade {
+namespace tessera::texture {
 namespace {
 
 using Arch = TESSERA_SIMD_ARCH;
@@ -125,4 +125,4 @@ void TESSERA_SIMD_ENTRY(sample_trilinear)(const TextureView& texture, Wrap wrap,
     for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch(texture, wrap, in, i, out);
 }
 
-}  // namespace tessera::shade
+}  // namespace tessera::texture

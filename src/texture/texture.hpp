@@ -22,8 +22,13 @@
 #include <glm/glm.hpp>
 
 #include "simd/isa.hpp"
+#include "simd/lane_padding.hpp"
 
-namespace tessera::shade {
+namespace tessera::texture {
+
+using simd::Isa;
+using simd::kLanePadding;
+using simd::padded_count;
 
 // How the stored values relate to light. sRGB data (albedo/base colour, 8-bit
 // images authored for display) is decoded to linear with the exact sRGB transfer
@@ -136,7 +141,7 @@ private:
 float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int width, int height);
 
 // Fragments to sample in SoA form. All pointers address at least
-// padded_count(count) floats (shade_kernels.hpp: kernels run whole vectors past
+// padded_count(count) floats (simd/lane_padding.hpp: kernels run whole vectors past
 // count). Any values in those extra lanes are safe: indices are clamped.
 struct TexCoordInputs {
     std::size_t count = 0;
@@ -155,9 +160,9 @@ struct TexelOutputs {
 
 // out[i] = texture.sample_trilinear({u[i], v[i]}, lod[i], wrap) for i < in.count.
 // The SIMD ISAs run the scalar sampler's operations in the same order, without
-// FMA contraction, so they return the same floats (tests/shade/test_texture.cpp
+// FMA contraction, so they return the same floats (tests/texture/test_texture.cpp
 // checks |simd − scalar| <= 1e-5 for texels in [0, 1]; it measures 0).
 void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const TexCoordInputs& in,
                       const TexelOutputs& out);
 
-}  // namespace tessera::shade
+}  // namespace tessera::texture

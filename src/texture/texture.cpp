@@ -1,7 +1,7 @@
 // Texture loading, mip chain and the scalar reference samplers (texture.hpp).
 // The sampling follows the GL 4.6 spec, §8.14 "Texture Minification" and
 // §8.14.2 "Coordinate Wrapping and Texel Selection", term for term.
-#include "shade/texture.hpp"
+#include "texture/texture.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "shade/shade_kernels.hpp"
+#include "simd/lane_padding.hpp"
 
-namespace tessera::shade {
+namespace tessera::texture {
 
 namespace {
 
@@ -281,4 +281,4 @@ void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const Te
     }
 }
 
-}  // namespace tessera::shade
+}  // namespace tessera::texture
