@@ -42,6 +42,18 @@ enum class AlbedoDecode {
     pow_2_2_after_filter,
 };
 
+// Where a normal map's tangent frame comes from when the mesh stores no
+// tangents: both derive it from screen-space derivatives of WorldPos and
+// TexCoords.
+enum class DerivedTangentFrame {
+    // The reference's getNormalFromMap (LearnOpenGL): T = normalize(Q1·st2.t − Q2·st1.t),
+    // B = −normalize(cross(N, T)).
+    learnopengl,
+    // glTF's convention: T along +u, B along −v (green up, UV origin at the
+    // image's top-left), whatever the handedness of the mesh's UV layout.
+    gltf,
+};
+
 // The reference shader's material inputs. Each map multiplies the factor
 // it belongs to (glTF's rule): a scene file that gives a map and no factor
 // gets factor 1.
@@ -62,6 +74,7 @@ struct Material {
     float ao_strength = 1.0f;
     TextureSlot normal_map{};     // tangent-space normals, RGB = xyz·0.5 + 0.5
     float normal_scale = 1.0f;  // scales the map's x and y (glTF normalTexture.scale)
+    DerivedTangentFrame derived_tangent_frame = DerivedTangentFrame::learnopengl;
     TextureSlot emissive_map{};   // RGB, multiplies `emissive`
 
     bool has_maps() const {

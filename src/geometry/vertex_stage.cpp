@@ -21,4 +21,13 @@ void shade_vertices(const Mesh& mesh, std::size_t first, const glm::mat4& model,
     }
 }
 
+void transform_tangents(const Mesh& mesh, std::size_t first, const glm::mat4& model, std::span<glm::vec4> out) {
+    assert(first + out.size() <= mesh.tangents.size());
+    const glm::mat3 to_world(model);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const glm::vec4& t = mesh.tangents[first + i];
+        out[i] = glm::vec4(to_world * glm::vec3(t), t.w);
+    }
+}
+
 }  // namespace tessera::geometry

@@ -20,4 +20,9 @@ glm::mat3 normal_matrix(const glm::mat4& model);
 void shade_vertices(const Mesh& mesh, std::size_t first, const glm::mat4& model, const glm::mat4& view_projection,
                     std::span<ShadedVertex> out);
 
+// The mesh's tangents [first, first + out.size()) in world space: tangents
+// follow the surface, so they take the model matrix itself (glTF's rule), not
+// the normal matrix; w, the handedness, is kept.
+void transform_tangents(const Mesh& mesh, std::size_t first, const glm::mat4& model, std::span<glm::vec4> out);
+
 }  // namespace tessera::geometry

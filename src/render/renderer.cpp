@@ -5,6 +5,7 @@
 // same for any thread count.
 #include "tessera/renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +23,7 @@
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
 #include "render/huge_pages.hpp"
+#include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
 #include "shade/surface_gather.hpp"
 
@@ -48,13 +50,18 @@ simd::Isa parse_isa(const std::string& name) {
 struct WorkerScratch {
     raster::TileBuffers raster;
     shade::FragmentBuffer fragments;
+    std::vector<shade::MaterialRun> material_runs;
+    shade::MaterialScratch material_scratch;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
     void reserve(int tile_side) {
         raster.reset(tile_side);
-        fragments.reserve(std::size_t(tile_side) * tile_side);
+        const std::size_t pixels = std::size_t(tile_side) * tile_side;
+        fragments.reserve(pixels);
+        material_runs.reserve(pixels);
+        material_scratch.reserve(pixels);
     }
 };
 
@@ -91,6 +98,7 @@ struct Renderer::Frame {
     RenderedImage image;
 
     std::vector<geometry::ShadedVertex> vertices;  // every object's vertices, object after object
+    std::vector<glm::vec4> tangents;               // world-space tangents, beside `vertices`; set only for meshes that have them
     std::vector<std::uint32_t> outcodes;           // one per vertex
     std::vector<geometry::ScreenVertex> screen;    // one per vertex; set where the outcode has no clip bit
     std::vector<std::uint32_t> first_vertex;       // per object, into `vertices`
@@ -111,6 +119,7 @@ struct Renderer::Frame {
     void assemble_and_bin(const Scene& scene);
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    void describe_for_textures(const raster::RasterTriangle& t, const Mesh& mesh, shade::TriangleCorners& corners) const;
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -161,6 +170,10 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
     render::reserve_huge(vertices, total);
     render::reserve_huge(outcodes, total);
     render::reserve_huge(screen, total);
+    const bool any_tangents = std::any_of(scene.objects.begin(), scene.objects.end(), [&](const Object& o) {
+        return !scene.meshes[o.mesh].tangents.empty();
+    });
+    if (any_tangents) render::reserve_huge(tangents, total), tangents.resize(total);
     vertices.resize(total);
     outcodes.resize(total);
     screen.resize(total);
@@ -177,6 +190,8 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
             const std::size_t count = std::min(kRun, mesh.positions.size() - first);
             const std::size_t base = first_vertex[o] + first;
             geometry::shade_vertices(mesh, first, object.model, view_projection, {vertices.data() + base, count});
+            if (!mesh.tangents.empty())
+                geometry::transform_tangents(mesh, first, object.model, {tangents.data() + base, count});
             for (std::size_t v = base; v < base + count; ++v) {
                 outcodes[v] = geometry::outcode(vertices[v], guard);
                 // The viewport transform, once per vertex rather than once per triangle corner.
@@ -264,6 +279,24 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     }
 }
 
+// What a textured material's fragments need beyond the corners: how the
+// screen-space barycentrics change per pixel, and stored tangents.
+void Renderer::Frame::describe_for_textures(const raster::RasterTriangle& t, const Mesh& mesh,
+                                            shade::TriangleCorners& corners) const {
+    // λ1 = E(corner 2 → corner 0) / area, λ2 = E(corner 0 → corner 1) / area, in
+    // fixed point: one pixel is kSubpixelScale units (raster/triangle_setup.hpp).
+    const float scale = float(geometry::kSubpixelScale) * t.inv_area;
+    corners.lambda1_dx = -float(t.y[0] - t.y[2]) * scale, corners.lambda1_dy = float(t.x[0] - t.x[2]) * scale;
+    corners.lambda2_dx = -float(t.y[1] - t.y[0]) * scale, corners.lambda2_dy = float(t.x[1] - t.x[0]) * scale;
+    // Tangents are kept for the frame's own vertices; a triangle clipping made
+    // derives its tangent frame instead.
+    if (mesh.tangents.empty()) return;
+    for (int k = 0; k < 3; ++k) {
+        if (t.vertex[k] & geometry::kClippedVertexBit) return;
+    }
+    for (int k = 0; k < 3; ++k) corners.tangent[k] = &tangents[t.vertex[k]];
+}
+
 void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
@@ -299,13 +332,21 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     auto lookup = [&](std::uint32_t id) {
         const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
         const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
-        return shade::TriangleCorners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
-                                       &chunk.vertex(t.vertex[2], vertices)},
-                                      &scene.materials[scene.objects[chunk.object].material]};
+        const Object& object = scene.objects[chunk.object];
+        shade::TriangleCorners corners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
+                                        &chunk.vertex(t.vertex[2], vertices)},
+                                       &scene.materials[object.material]};
+        if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
+        return corners;
     };
-    const std::size_t count = shade::gather_surface_points(s.raster, rect.width(), rect.height(), lookup, s.fragments);
+    const std::size_t count = shade::gather_surface_points(s.raster, rect.width(), rect.height(), lookup, s.fragments,
+                                                           s.material_runs);
     const shade::RadianceOutputs shaded = s.fragments.outputs();
-    if (count > 0) shade::shade_fragments(isa, s.fragments.inputs(count), lights, shaded);
+    if (count > 0) {
+        shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
+        shade::shade_fragments(isa, s.fragments.inputs(count), lights, shaded);
+        shade::add_emission(s.material_runs, s.fragments);
+    }
     s.fragments_shaded += count;
     const auto t2 = Clock::now();
 

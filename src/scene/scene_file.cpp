@@ -27,6 +27,18 @@
 //   metallic = 0.0                  # [0, 1]
 //   roughness = 0.5                 # [0, 1]
 //   ao = 1.0                        # [0, 1]
+//   emissive = [0, 0, 0]            # HDR radiance added to the shaded colour, each >= 0
+//   albedo_map = "rust/albedo.png"  # texture maps (reference, "Textured variant"): paths relative to
+//   metallic_map = "..."            #   this file; any format OpenImageIO reads. Each multiplies its
+//   roughness_map = "..."           #   factor above, whose default becomes 1 when the map is given
+//   ao_map = "..."                  #   (ao's default is 1 anyway). Metallic, roughness and ao read
+//   normal_map = "..."              #   the red channel; the normal map is tangent space, RGB = n·0.5 + 0.5,
+//   emissive_map = "..."            #   its frame derived as the reference's getNormalFromMap does.
+//   albedo_map_encoding = "gamma2.2"  # "gamma2.2": the reference's pow(texture.rgb, 2.2) after filtering
+//                                   # (default); "srgb": exact sRGB decode before filtering (GL_SRGB8);
+//                                   # "linear": texels are linear. Emissive maps are sRGB.
+//   normal_scale = 1.0              # scales the normal map's x and y
+//   wrap = "repeat"                 # every map of the material: "repeat" | "clamp_to_edge"
 //
 //   [[objects]]                     # any number, including none
 //   mesh = "sphere"                 # required: "sphere" | "plane" | "cube"
@@ -65,6 +77,7 @@
 #include <toml++/toml.h>
 
 #include "tessera/scene.hpp"
+#include "texture/texture.hpp"
 
 namespace tessera {
 namespace {
@@ -132,6 +145,7 @@ public:
         if (const toml::node* lights = root.get("lights")) read_lights(*lights, scene);
         if (const toml::node* materials = root.get("materials")) read_named_materials(*materials);
         if (const toml::node* objects = root.get("objects")) read_objects(*objects, scene);
+        scene.textures = std::move(textures_);
         return scene;
     }
 
@@ -342,9 +356,48 @@ private:
         }
     }
 
-    Material read_material(const toml::table& table, const std::string& name) const {
-        check_keys(table, name, {"albedo", "metallic", "roughness", "ao"});
+    Material read_material(const toml::table& table, const std::string& name) {
+        check_keys(table, name, {"albedo", "metallic", "roughness", "ao", "emissive", "albedo_map", "albedo_map_encoding",
+                                 "metallic_map", "roughness_map", "ao_map", "normal_map", "normal_scale",
+                                 "emissive_map", "wrap"});
         Material material;
+        TextureWrap wrap = TextureWrap::repeat;
+        if (const toml::node* n = table.get("wrap")) {
+            const std::string text = read_string(*n, child(name, "wrap"));
+            if (text == "clamp_to_edge") {
+                wrap = TextureWrap::clamp_to_edge;
+            } else if (text != "repeat") {
+                fail_at(n->source(), "expected 'repeat' or 'clamp_to_edge' for '" + child(name, "wrap") + "', got '" +
+                                         text + "'");
+            }
+        }
+        // A map multiplies its factor; with a map and no factor, the factor is 1.
+        const auto map = [&](std::string_view key, texture::ColorSpace color_space, TextureSlot& slot) {
+            const toml::node* n = table.get(key);
+            if (n == nullptr) return false;
+            slot.texture = texture_index(*n, child(name, key), color_space);
+            slot.wrap = wrap;
+            return true;
+        };
+        texture::ColorSpace albedo_space = texture::ColorSpace::linear;
+        material.albedo_decode = AlbedoDecode::pow_2_2_after_filter;
+        if (const toml::node* n = table.get("albedo_map_encoding")) {
+            const std::string text = read_string(*n, child(name, "albedo_map_encoding"));
+            if (text == "srgb") {
+                albedo_space = texture::ColorSpace::srgb, material.albedo_decode = AlbedoDecode::linear;
+            } else if (text == "linear") {
+                material.albedo_decode = AlbedoDecode::linear;
+            } else if (text != "gamma2.2") {
+                fail_at(n->source(), "expected 'gamma2.2', 'srgb' or 'linear' for '" +
+                                         child(name, "albedo_map_encoding") + "', got '" + text + "'");
+            }
+        }
+        if (map("albedo_map", albedo_space, material.albedo_map)) material.albedo = glm::vec3(1.0f);
+        if (map("metallic_map", texture::ColorSpace::linear, material.metallic_map)) material.metallic = 1.0f;
+        if (map("roughness_map", texture::ColorSpace::linear, material.roughness_map)) material.roughness = 1.0f;
+        map("ao_map", texture::ColorSpace::linear, material.ao_map);
+        map("normal_map", texture::ColorSpace::linear, material.normal_map);
+        if (map("emissive_map", texture::ColorSpace::srgb, material.emissive_map)) material.emissive = glm::vec3(1.0f);
         if (const toml::node* n = table.get("albedo")) {
             material.albedo = read_vec3(*n, child(name, "albedo"), kUnitInterval);
         }
@@ -357,7 +410,30 @@ private:
         if (const toml::node* n = table.get("ao")) {
             material.ao = read_float(*n, child(name, "ao"), kUnitInterval);
         }
+        if (const toml::node* n = table.get("emissive")) {
+            material.emissive = read_vec3(*n, child(name, "emissive"), kNonNegative);
+        }
+        if (const toml::node* n = table.get("normal_scale")) {
+            material.normal_scale = read_float(*n, child(name, "normal_scale"));
+        }
         return material;
+    }
+
+    // The texture a path names (relative to the scene file's folder), loaded
+    // once per path and colour space.
+    std::int32_t texture_index(const toml::node& node, const std::string& name, texture::ColorSpace color_space) {
+        const std::filesystem::path path =
+            std::filesystem::path(source_).parent_path() / std::filesystem::path(read_string(node, name));
+        const std::string key = path.lexically_normal().string() + (color_space == texture::ColorSpace::srgb ? "|srgb" : "");
+        if (const auto loaded = texture_indices_.find(key); loaded != texture_indices_.end()) return loaded->second;
+        try {
+            textures_.push_back(std::make_shared<const texture::Texture>(texture::Texture::load(path, color_space)));
+        } catch (const texture::TextureError& error) {
+            fail_at(node.source(), "cannot load the texture for '" + name + "': " + error.what());
+        }
+        const auto index = static_cast<std::int32_t>(textures_.size() - 1);
+        texture_indices_.emplace(key, index);
+        return index;
     }
 
     // All named materials are validated, used or not.
@@ -474,6 +550,8 @@ private:
     std::map<std::string, std::uint32_t> used_materials_;  // name -> index in Scene::materials
     std::map<std::string, std::uint32_t> used_meshes_;     // name -> index in Scene::meshes
     std::optional<std::uint32_t> default_material_;
+    std::vector<std::shared_ptr<const texture::Texture>> textures_;  // becomes Scene::textures
+    std::map<std::string, std::int32_t> texture_indices_;            // path and colour space -> index in textures_
 };
 
 }  // namespace

@@ -3,7 +3,10 @@
 namespace tessera::shade {
 
 void FragmentBuffer::reserve(std::size_t max_fragments) {
-    for (auto& c : channels_) c.resize(padded_count(max_fragments));
+    capacity_ = max_fragments;
+    // A kernel over a run starting anywhere may read whole vectors past the
+    // run's end: one vector of slack past the padded size.
+    for (auto& c : channels_) c.resize(padded_count(max_fragments) + kLanePadding);
 }
 
 void FragmentBuffer::pad(std::size_t count) {

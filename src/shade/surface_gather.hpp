@@ -14,18 +14,34 @@
 
 namespace tessera::shade {
 
-// Storage for one tile's fragments: shade_fragments' inputs and outputs.
-// Reserved once per worker; nothing is allocated per tile.
+// Storage for one tile's fragments: shade_fragments' inputs and outputs, and
+// for textured materials their texture coordinates with screen-space
+// derivatives. Reserved once per worker; nothing is allocated per tile.
 class FragmentBuffer {
 public:
+    enum Channel {
+        world_x, world_y, world_z, normal_x, normal_y, normal_z, albedo_r, albedo_g, albedo_b, metallic, roughness, ao,
+        out_r, out_g, out_b,
+        // Textured materials only (MaterialRun::textured):
+        u, v,                          // TexCoords
+        dudx, dvdx, dudy, dvdy,        // dFdx(TexCoords), dFdy(TexCoords): y up, as GL's window y
+        dpdx_x, dpdx_y, dpdx_z,        // dFdx(WorldPos)
+        dpdy_x, dpdy_y, dpdy_z,        // dFdy(WorldPos)
+        tangent_x, tangent_y, tangent_z, tangent_w,  // stored world-space tangent; w = 0: none, derive from derivatives
+        emissive_r, emissive_g, emissive_b,
+        kChannels
+    };
+
     void reserve(std::size_t max_fragments);
-    std::size_t capacity() const { return channels_[0].size(); }
+    std::size_t capacity() const { return capacity_; }
     void set(std::size_t i, const glm::vec3& world_pos, const glm::vec3& normal, const Material& m) {
         channels_[world_x][i] = world_pos.x, channels_[world_y][i] = world_pos.y, channels_[world_z][i] = world_pos.z;
         channels_[normal_x][i] = normal.x, channels_[normal_y][i] = normal.y, channels_[normal_z][i] = normal.z;
         channels_[albedo_r][i] = m.albedo.r, channels_[albedo_g][i] = m.albedo.g, channels_[albedo_b][i] = m.albedo.b;
         channels_[metallic][i] = m.metallic, channels_[roughness][i] = m.roughness, channels_[ao][i] = m.ao;
     }
+    float* channel(Channel c) { return channels_[c].data(); }
+    const float* channel(Channel c) const { return channels_[c].data(); }
     // Fills the lanes from count to padded_count(count) with copies of a real
     // fragment, so that the kernels' spare lanes compute sane values.
     void pad(std::size_t count);
@@ -33,29 +49,51 @@ public:
     RadianceOutputs outputs();
 
 private:
-    enum Channel { world_x, world_y, world_z, normal_x, normal_y, normal_z, albedo_r, albedo_g, albedo_b, metallic,
-                   roughness, ao, out_r, out_g, out_b, kChannels };
+    std::size_t capacity_ = 0;
     std::vector<float> channels_[kChannels];
+};
+
+// Fragments [begin, end) of a FragmentBuffer that share one material.
+struct MaterialRun {
+    std::uint32_t begin = 0, end = 0;
+    const Material* material = nullptr;
+    bool textured = false;  // the material has maps: texture coordinates and derivatives were gathered
 };
 
 // A visible triangle as the gather needs it.
 struct TriangleCorners {
     const geometry::ShadedVertex* corner[3];
     const Material* material;
+    // Textured materials only. Screen-space barycentrics are affine in the
+    // pixel position: their change per pixel right and per pixel down.
+    float lambda1_dx = 0, lambda1_dy = 0, lambda2_dx = 0, lambda2_dy = 0;
+    const glm::vec4* tangent[3] = {nullptr, nullptr, nullptr};  // world-space tangents where the mesh has them
 };
 
-// Gathers the covered pixels of a width × height tile, row by row, into `out`
-// and returns how many there are. lookup(triangle_id) gives TriangleCorners.
-// Neighbouring pixels mostly show the same triangle, so its corners are
-// fetched once per run of pixels.
+// Gathers the covered pixels of a width × height tile, row by row, into `out`,
+// records the runs of fragments that share a material, and returns the
+// fragment count. lookup(triangle_id) gives TriangleCorners. Neighbouring
+// pixels mostly show the same triangle, so its corners are fetched once per
+// run of pixels.
+//
+// Textured materials also get dFdx/dFdy of TexCoords and WorldPos the way a
+// GPU computes them: pixels form 2×2 quads (even x and y at the top-left, tile
+// origins being even), and a derivative is the difference between the two
+// pixels of the quad's row (x) or column (y), y pointing up as in GL. The
+// quad's other pixels need not be covered: like a GPU's helper lanes they
+// evaluate this triangle's interpolants there.
 template <class Lookup>
 std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
-                                  FragmentBuffer& out) {
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs) {
+    using C = FragmentBuffer;
     std::size_t count = 0;
+    runs.clear();
     std::uint32_t cached_id = raster::kNoTriangle;
-    const Material* m = nullptr;
+    TriangleCorners c{};
+    bool textured = false;
     std::array<float, 3> inv_w{};
     glm::vec3 world0{}, world_d1{}, world_d2{}, normal0{}, normal_d1{}, normal_d2{};
+    glm::vec2 uv0{}, uv_d1{}, uv_d2{};
     for (int y = 0; y < height; ++y) {
         const std::size_t row = std::size_t(y) * tile.side;
         for (int x = 0; x < width; ++x) {
@@ -63,19 +101,54 @@ std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, in
             const std::uint32_t id = tile.triangle[row + x];
             if (id != cached_id) {
                 cached_id = id;
-                const TriangleCorners c = lookup(id);
-                m = c.material;
+                c = lookup(id);
+                textured = c.material->has_maps();
                 // As the viewport transform computed it (ScreenVertex::inv_w).
                 for (int k = 0; k < 3; ++k) inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
                 world0 = c.corner[0]->world_pos;
                 world_d1 = c.corner[1]->world_pos - world0, world_d2 = c.corner[2]->world_pos - world0;
                 normal0 = c.corner[0]->normal;
                 normal_d1 = c.corner[1]->normal - normal0, normal_d2 = c.corner[2]->normal - normal0;
+                uv0 = c.corner[0]->uv;
+                uv_d1 = c.corner[1]->uv - uv0, uv_d2 = c.corner[2]->uv - uv0;
             }
-            const auto [b1, b2] = raster::perspective_barycentrics(inv_w, tile.lambda1[row + x], tile.lambda2[row + x]);
-            out.set(count++, world0 + b1 * world_d1 + b2 * world_d2, normal0 + b1 * normal_d1 + b2 * normal_d2, *m);
+            if (runs.empty() || runs.back().material != c.material) {
+                if (!runs.empty()) runs.back().end = std::uint32_t(count);
+                runs.push_back({std::uint32_t(count), 0, c.material, textured});
+            }
+            const float lambda1 = tile.lambda1[row + x], lambda2 = tile.lambda2[row + x];
+            const auto [b1, b2] = raster::perspective_barycentrics(inv_w, lambda1, lambda2);
+            const glm::vec3 world = world0 + b1 * world_d1 + b2 * world_d2;
+            out.set(count, world, normal0 + b1 * normal_d1 + b2 * normal_d2, *c.material);
+            if (textured) {
+                const glm::vec2 uv = uv0 + b1 * uv_d1 + b2 * uv_d2;
+                // The quad partners: the pixel beside this one in the quad's row and in its column.
+                const float step_x = (x & 1) ? -1.0f : 1.0f, step_y = (y & 1) ? -1.0f : 1.0f;
+                const auto [bx1, bx2] = raster::perspective_barycentrics(
+                    inv_w, lambda1 + step_x * c.lambda1_dx, lambda2 + step_x * c.lambda2_dx);
+                const auto [by1, by2] = raster::perspective_barycentrics(
+                    inv_w, lambda1 + step_y * c.lambda1_dy, lambda2 + step_y * c.lambda2_dy);
+                // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
+                const glm::vec2 duv_dx = step_x * ((bx1 - b1) * uv_d1 + (bx2 - b2) * uv_d2);
+                const glm::vec2 duv_dy = -step_y * ((by1 - b1) * uv_d1 + (by2 - b2) * uv_d2);
+                const glm::vec3 dp_dx = step_x * ((bx1 - b1) * world_d1 + (bx2 - b2) * world_d2);
+                const glm::vec3 dp_dy = -step_y * ((by1 - b1) * world_d1 + (by2 - b2) * world_d2);
+                const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
+                                        dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
+                for (int k = 0; k < 12; ++k) out.channel(C::Channel(C::u + k))[count] = values[k];
+                glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
+                if (c.tangent[0] && c.tangent[1] && c.tangent[2]) {
+                    const float b0 = 1.0f - b1 - b2;
+                    tangent = glm::vec4(glm::vec3(*c.tangent[0]) * b0 + glm::vec3(*c.tangent[1]) * b1 +
+                                            glm::vec3(*c.tangent[2]) * b2,
+                                        c.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
+                }
+                for (int k = 0; k < 4; ++k) out.channel(C::Channel(C::tangent_x + k))[count] = tangent[k];
+            }
+            ++count;
         }
     }
+    if (!runs.empty()) runs.back().end = std::uint32_t(count);
     out.pad(count);
     return count;
 }

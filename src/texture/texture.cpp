@@ -256,7 +256,8 @@ float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int w
 // Defined in texture_sampling_simd.cpp, once per ISA.
 #define TESSERA_DECLARE_TEXTURE_ENTRIES(suffix)                                                        \
     void sample_trilinear_##suffix(const TextureView& texture, Wrap wrap, const TexCoordInputs& in, \
-                                   const TexelOutputs& out);
+                                   const TexelOutputs& out);                                       \
+    void lod_from_derivatives_##suffix(const DerivativeInputs& in, int width, int height, float* lod);
 TESSERA_DECLARE_TEXTURE_ENTRIES(sse4)
 TESSERA_DECLARE_TEXTURE_ENTRIES(avx2)
 TESSERA_DECLARE_TEXTURE_ENTRIES(avx512)
@@ -278,6 +279,19 @@ void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const Te
         case Isa::sse4: return sample_trilinear_sse4(texture.view(), wrap, in, out);
         case Isa::avx2: return sample_trilinear_avx2(texture.view(), wrap, in, out);
         case Isa::avx512: return sample_trilinear_avx512(texture.view(), wrap, in, out);
+    }
+}
+
+void lod_from_derivatives(Isa isa, const DerivativeInputs& in, int width, int height, float* lod) {
+    simd::require_supported(isa);
+    switch (isa) {
+        case Isa::scalar:
+            for (std::size_t i = 0; i < in.count; ++i)
+                lod[i] = lod_from_derivatives(in.dudx[i], in.dvdx[i], in.dudy[i], in.dvdy[i], width, height);
+            return;
+        case Isa::sse4: return lod_from_derivatives_sse4(in, width, height, lod);
+        case Isa::avx2: return lod_from_derivatives_avx2(in, width, height, lod);
+        case Isa::avx512: return lod_from_derivatives_avx512(in, width, height, lod);
     }
 }
 

@@ -140,6 +140,21 @@ private:
 // per pixel; width, height of level 0. ρ = 0 gives -∞ (magnification).
 float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int width, int height);
 
+// Screen-space derivatives of (u, v) for a batch of fragments, SoA, each array
+// padded as TexCoordInputs' are.
+struct DerivativeInputs {
+    std::size_t count = 0;
+    const float* dudx = nullptr;
+    const float* dvdx = nullptr;
+    const float* dudy = nullptr;
+    const float* dvdy = nullptr;
+};
+
+// lod[i] = lod_from_derivatives(...[i], width, height) for i < in.count; `lod`
+// holds padded_count(in.count) floats. The SIMD ISAs compute ½·log2(max(ρx², ρy²)),
+// within a few ulps of the scalar hypot and log2.
+void lod_from_derivatives(Isa isa, const DerivativeInputs& in, int width, int height, float* lod);
+
 // Fragments to sample in SoA form. All pointers address at least
 // padded_count(count) floats (simd/lane_padding.hpp: kernels run whole vectors past
 // count). Any values in those extra lanes are safe: indices are clamped.

@@ -16,10 +16,11 @@
 // and every noise is periodic over the image, so the textures tile under
 // GL_REPEAT with no seam.
 //
-// Normal map convention: +x (red) along +u (right), +y (green) along +v, with
-// v increasing with the row index as tessera::shade::Texture stores images
-// (row 0 at v = 0). With TBN = (∂P/∂u, ∂P/∂v, N) that is the basis the
-// derivative-based getNormalFromMap builds.
+// Normal map convention (OpenGL's and glTF's): +x (red) along +u (right), +y
+// (green) up the image, towards row 0, i.e. along −v (tessera's Texture
+// stores row 0 at v = 0). On the demo's sphere (u round the equator, v from
+// pole to pole) the reference's derivative-based getNormalFromMap builds
+// exactly that frame: T = ∂P/∂u, B = −cross(N, T) = −∂P/∂v.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -152,7 +153,7 @@ Maps generate() {
             const float dh_dv = (height_at(x, y + 1) - height_at(x, y - 1)) * 0.5f * kBump;
             const float inv_length = 1.0f / std::sqrt(dh_du * dh_du + dh_dv * dh_dv + 1.0f);
             maps.normal[i * 3 + 0] = -dh_du * inv_length * 0.5f + 0.5f;
-            maps.normal[i * 3 + 1] = -dh_dv * inv_length * 0.5f + 0.5f;
+            maps.normal[i * 3 + 1] = dh_dv * inv_length * 0.5f + 0.5f;  // green up: along −v
             maps.normal[i * 3 + 2] = inv_length * 0.5f + 0.5f;
 
             // Ambient occlusion: pits and the rust's grain hold less sky; bare metal is open.
