@@ -81,8 +81,11 @@ public:
         : isa_(isa), textures_(textures), fragments_(fragments), begin_(run.begin), count_(run.end - run.begin),
           scratch_(scratch) {}
 
-    void sample(const TextureSlot& slot) {
-        if (slot.texture == sampled_ && slot.wrap == sampled_wrap_) return;
+    // Samples channels 0..last_channel (at least) of the slot's texture.
+    void sample(const TextureSlot& slot, int last_channel) {
+        // The sampler does R, RGB or RGBA.
+        const int channels = last_channel == 0 ? 1 : last_channel <= 2 ? 3 : 4;
+        if (slot.texture == sampled_ && slot.wrap == sampled_wrap_ && channels <= sampled_channels_) return;
         const texture::Texture& texture = *textures_[std::size_t(slot.texture)];
         if (texture.width() != lod_width_ || texture.height() != lod_height_) {
             using C = FragmentBuffer;
@@ -92,8 +95,9 @@ public:
         }
         texture::sample_trilinear(isa_, texture, to_texture_wrap(slot.wrap),
                                   {count_, at(FragmentBuffer::u), at(FragmentBuffer::v), scratch_.lod.data()},
-                                  {scratch_.r.data(), scratch_.g.data(), scratch_.b.data(), scratch_.a.data()});
-        sampled_ = slot.texture, sampled_wrap_ = slot.wrap;
+                                  {scratch_.r.data(), channels > 1 ? scratch_.g.data() : nullptr,
+                                   channels > 1 ? scratch_.b.data() : nullptr, channels > 3 ? scratch_.a.data() : nullptr});
+        sampled_ = slot.texture, sampled_wrap_ = slot.wrap, sampled_channels_ = channels;
     }
     // The scratch channels were changed in place: the next sample() must refetch.
     void forget() { sampled_ = -1; }
@@ -112,6 +116,7 @@ private:
     MaterialScratch& scratch_;
     std::int32_t sampled_ = -1;
     TextureWrap sampled_wrap_ = TextureWrap::repeat;
+    int sampled_channels_ = 0;
     int lod_width_ = 0, lod_height_ = 0;
 };
 
@@ -124,7 +129,7 @@ void apply_run(simd::Isa isa, std::span<const std::shared_ptr<const texture::Tex
     const auto out = [&](C::Channel c) { return f.channel(c) + run.begin; };
     // factor × one channel of a map
     const auto scale_channel = [&](const TextureSlot& slot, int channel, float factor, C::Channel target) {
-        sampler.sample(slot);
+        sampler.sample(slot, channel);
         const float* texel = sampler.channel(channel);
         float* dst = out(target);
         for (std::size_t i = 0; i < n; ++i) dst[i] = factor * texel[i];
@@ -132,16 +137,17 @@ void apply_run(simd::Isa isa, std::span<const std::shared_ptr<const texture::Tex
     if (m.metallic_map.present()) scale_channel(m.metallic_map, m.metallic_channel, m.metallic, C::metallic);
     if (m.roughness_map.present()) scale_channel(m.roughness_map, m.roughness_channel, m.roughness, C::roughness);
     if (m.ao_map.present()) {
-        sampler.sample(m.ao_map);
+        sampler.sample(m.ao_map, 0);
         const float* texel = sampler.channel(0);
         float* ao = out(C::ao);
         for (std::size_t i = 0; i < n; ++i) ao[i] = m.ao * (1.0f + m.ao_strength * (texel[i] - 1.0f));
     }
     if (m.emissive_map.present()) {
+        sampler.sample(m.emissive_map, 2);
         for (int c = 0; c < 3; ++c) scale_channel(m.emissive_map, c, m.emissive[c], C::Channel(C::emissive_r + c));
     }
     if (m.normal_map.present()) {
-        sampler.sample(m.normal_map);
+        sampler.sample(m.normal_map, 2);
         NormalMapBatch batch;
         batch.count = n;
         batch.scale = m.normal_scale;
@@ -160,7 +166,7 @@ void apply_run(simd::Isa isa, std::span<const std::shared_ptr<const texture::Tex
     }
     // Last: the power changes the sampled values in place.
     if (m.albedo_map.present()) {
-        sampler.sample(m.albedo_map);
+        sampler.sample(m.albedo_map, 2);
         float* texel[] = {const_cast<float*>(sampler.channel(0)), const_cast<float*>(sampler.channel(1)),
                           const_cast<float*>(sampler.channel(2))};
         if (m.albedo_decode == AlbedoDecode::pow_2_2_after_filter) {

@@ -271,9 +271,8 @@ void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const Te
             for (std::size_t i = 0; i < in.count; ++i) {
                 const glm::vec4 s = texture.sample_trilinear({in.u[i], in.v[i]}, in.lod[i], wrap);
                 out.r[i] = s.r;
-                out.g[i] = s.g;
-                out.b[i] = s.b;
-                out.a[i] = s.a;
+                if (out.g) out.g[i] = s.g, out.b[i] = s.b;
+                if (out.a) out.a[i] = s.a;
             }
             return;
         case Isa::sse4: return sample_trilinear_sse4(texture.view(), wrap, in, out);

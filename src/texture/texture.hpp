@@ -165,7 +165,9 @@ struct TexCoordInputs {
     const float* lod = nullptr;  // as for Texture::sample_trilinear
 };
 
-// Sampled linear RGBA, one array per channel, padded like the inputs.
+// Sampled linear RGBA, one array per channel, padded like the inputs. Only
+// the channels asked for are sampled: r alone (g, b, a null), r, g, b (a
+// null), or all four.
 struct TexelOutputs {
     float* r = nullptr;
     float* g = nullptr;

@@ -9,6 +9,7 @@
 // -ffp-contract=off (src/texture/CMakeLists.txt): an FMA in x = u·size − ½ would
 // move the bilinear weight by up to half an ulp of u·size (3e-5 on a 512-texel
 // side). So the results equal the scalar sampler's; the test allows 1e-5.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -26,14 +27,32 @@ using IntBatch = xsimd::batch<std::int32_t, Arch>;
 static_assert(kLanePadding % Batch::size == 0, "padding must hold whole vectors");
 static_assert(IntBatch::size == Batch::size, "one int32 index per float lane");
 
-struct Rgba {
-    Batch r, g, b, a;
+// The first N channels of a texel per lane: N = 1 (grey data), 3 (RGB) or 4.
+template <int N>
+struct Texels {
+    std::array<Batch, N> c;
 };
 
-Rgba lerp(const Rgba& t0, const Rgba& t1, const Batch& weight) {
+template <int N>
+Texels<N> lerp(const Texels<N>& t0, const Texels<N>& t1, const Batch& weight) {
     const Batch keep = Batch(1.0f) - weight;
-    return {keep * t0.r + weight * t1.r, keep * t0.g + weight * t1.g, keep * t0.b + weight * t1.b,
-            keep * t0.a + weight * t1.a};
+    Texels<N> result;
+    for (int k = 0; k < N; ++k) result.c[k] = keep * t0.c[k] + weight * t1.c[k];
+    return result;
+}
+
+// base[index[lane]] per lane with the hardware gather where there is one
+// (xsimd 8.1's Batch::gather loads lane by lane).
+Batch gather(const float* base, const IntBatch& index) {
+#if defined(__AVX512F__)
+    static_assert(Batch::size == 16);
+    return _mm512_i32gather_ps(index, base, 4);
+#elif defined(__AVX2__)
+    static_assert(Batch::size == 8);
+    return _mm256_i32gather_ps(base, index, 4);
+#else
+    return Batch::gather(base, index);
+#endif
 }
 
 // min(max(x, lo), hi): the hardware max returns its second operand for NaN, so NaN → lo.
@@ -77,24 +96,29 @@ AxisTaps axis_taps(Batch coord, const IntBatch& size, const Batch& size_f, Wrap 
             xsimd::select(i1 < zero, zero, xsimd::select(i1 > last, last, i1)), x - x_floor};
 }
 
-// Texel RGBA at texel index `index` (interleaved: the four channels at 4·index + c).
-Rgba fetch(const float* texels, const IntBatch& index) {
+// The texel at texel index `index` (interleaved: channel c at 4·index + c).
+template <int N>
+Texels<N> fetch(const float* texels, const IntBatch& index) {
     const IntBatch base = index * IntBatch(4);
-    return {Batch::gather(texels, base), Batch::gather(texels + 1, base), Batch::gather(texels + 2, base),
-            Batch::gather(texels + 3, base)};
+    Texels<N> result;
+    for (int k = 0; k < N; ++k) result.c[k] = gather(texels + k, base);
+    return result;
 }
 
-Rgba sample_bilinear(const TextureView& texture, const IntBatch& level, const Batch& u, const Batch& v, Wrap wrap) {
+template <int N>
+Texels<N> sample_bilinear(const TextureView& texture, const IntBatch& level, const Batch& u, const Batch& v, Wrap wrap) {
     const LevelLanes l = level_lanes(texture, level);
     const AxisTaps x = axis_taps(u, l.width, l.width_f, wrap);
     const AxisTaps y = axis_taps(v, l.height, l.height_f, wrap);
     const IntBatch row0 = l.offset + y.i0 * l.width;
     const IntBatch row1 = l.offset + y.i1 * l.width;
-    const Rgba top = lerp(fetch(texture.texels, row0 + x.i0), fetch(texture.texels, row0 + x.i1), x.alpha);
-    const Rgba bottom = lerp(fetch(texture.texels, row1 + x.i0), fetch(texture.texels, row1 + x.i1), x.alpha);
+    const Texels<N> top = lerp(fetch<N>(texture.texels, row0 + x.i0), fetch<N>(texture.texels, row0 + x.i1), x.alpha);
+    const Texels<N> bottom =
+        lerp(fetch<N>(texture.texels, row1 + x.i0), fetch<N>(texture.texels, row1 + x.i1), x.alpha);
     return lerp(top, bottom, y.alpha);
 }
 
+template <int N>
 void sample_trilinear_batch(const TextureView& texture, Wrap wrap, const TexCoordInputs& in, std::size_t i,
                             const TexelOutputs& out) {
     const Batch u = xsimd::load_unaligned(in.u + i);
@@ -106,14 +130,12 @@ void sample_trilinear_batch(const TextureView& texture, Wrap wrap, const TexCoor
     const IntBatch level0 = xsimd::to_int(level_floor);
     const IntBatch level1 = xsimd::min(level0 + IntBatch(1), IntBatch(texture.level_count - 1));
 
-    const Rgba s0 = sample_bilinear(texture, level0, u, v, wrap);
-    Rgba result = s0;
+    const Texels<N> s0 = sample_bilinear<N>(texture, level0, u, v, wrap);
+    Texels<N> result = s0;
     // The scalar sampler skips level1 when blend is 0 for a lane; skip it here only when it is 0 for all.
-    if (xsimd::any(blend != Batch(0.0f))) result = lerp(s0, sample_bilinear(texture, level1, u, v, wrap), blend);
-    result.r.store_unaligned(out.r + i);
-    result.g.store_unaligned(out.g + i);
-    result.b.store_unaligned(out.b + i);
-    result.a.store_unaligned(out.a + i);
+    if (xsimd::any(blend != Batch(0.0f))) result = lerp(s0, sample_bilinear<N>(texture, level1, u, v, wrap), blend);
+    float* const channels[] = {out.r, out.g, out.b, out.a};
+    for (int k = 0; k < N; ++k) result.c[k].store_unaligned(channels[k] + i);
 }
 
 }  // namespace
@@ -134,7 +156,14 @@ void TESSERA_SIMD_ENTRY(lod_from_derivatives)(const DerivativeInputs& in, int wi
 void TESSERA_SIMD_ENTRY(sample_trilinear)(const TextureView& texture, Wrap wrap, const TexCoordInputs& in,
                                           const TexelOutputs& out) {
     const std::size_t end = padded_count(in.count);
-    for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch(texture, wrap, in, i, out);
+    // Only the channels asked for are fetched: a grey map costs a quarter of an RGBA one.
+    if (out.a != nullptr) {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch<4>(texture, wrap, in, i, out);
+    } else if (out.g != nullptr) {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch<3>(texture, wrap, in, i, out);
+    } else {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_trilinear_batch<1>(texture, wrap, in, i, out);
+    }
 }
 
 }  // namespace tessera::texture

@@ -28,6 +28,13 @@ inline const std::vector<BadScene>& bad_scenes() {
         {"bare_word_value", TESSERA_CAMERA "fov_y = wide\n", {"@:4:"}},
         {"binary_garbage", std::string_view("\x00\xff\xfe[[\x01", 6), {"@:1:"}},
         {"invalid_utf8_string", TESSERA_CAMERA "[materials.a]\nalbedo = \"\xc3\x28\"\n", {"@:5:"}},
+        // Textures.
+        {"missing_texture", TESSERA_CAMERA "[materials.a]\nalbedo_map = \"no/such/albedo.png\"\n",
+         {"@:5:14:", "cannot load the texture for 'materials.a.albedo_map'", "no/such/albedo.png"}},
+        {"unknown_albedo_encoding", TESSERA_CAMERA "[materials.a]\nalbedo_map_encoding = \"gamma3\"\n",
+         {"@:5:", "expected 'gamma2.2', 'srgb' or 'linear' for 'materials.a.albedo_map_encoding'"}},
+        {"unknown_wrap", TESSERA_CAMERA "[materials.a]\nwrap = \"mirror\"\n",
+         {"@:5:8:", "expected 'repeat' or 'clamp_to_edge' for 'materials.a.wrap'"}},
         // Wrong value types.
         {"width_is_string", TESSERA_CAMERA "[output]\nwidth = \"big\"\n",
          {"@:5:9:", "expected an integer for 'output.width', got string"}},

@@ -376,3 +376,27 @@ TEST_CASE("scene errors: values") {
                     "test.toml:1:1: expected 'camera.up' to be non-zero and not parallel");
     }
 }
+
+TEST_CASE("textured.toml: one shared rust material, maps loaded once, factors 1") {
+    const std::filesystem::path path = std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes" / "textured.toml";
+    const tessera::Scene scene = tessera::load_scene_file(path);
+    REQUIRE(scene.materials.size() == 1);
+    CHECK(scene.objects.size() == 49);
+    CHECK(scene.lights.size() == 1);
+    CHECK(scene.textures.size() == 5);
+    const tessera::Material& m = scene.materials[0];
+    CHECK(m.albedo == glm::vec3(1.0f));
+    CHECK(m.metallic == 1.0f);
+    CHECK(m.roughness == 1.0f);
+    CHECK(m.albedo_decode == tessera::AlbedoDecode::pow_2_2_after_filter);
+    CHECK(m.derived_tangent_frame == tessera::DerivedTangentFrame::learnopengl);
+    for (const tessera::TextureSlot* slot : {&m.albedo_map, &m.metallic_map, &m.roughness_map, &m.ao_map, &m.normal_map})
+        CHECK(slot->present());
+    CHECK_FALSE(m.emissive_map.present());
+    // A factor written next to its map multiplies it.
+    const std::string text = "[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 0]\n[[objects]]\nmesh = \"plane\"\n"
+                             "material = { roughness_map = \"textures/rust/roughness.png\", roughness = 0.5 }\n";
+    const tessera::Scene inline_scene = tessera::parse_scene(text, (path.parent_path() / "inline.toml").string());
+    CHECK(inline_scene.materials.at(0).roughness == 0.5f);
+    CHECK(inline_scene.materials.at(0).roughness_map.present());
+}

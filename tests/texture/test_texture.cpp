@@ -272,6 +272,27 @@ TEST_CASE("texture: lod from derivatives is log2 of the GL scale factor") {
     CHECK(lod_from_derivatives(texel / 4, 0, 0, texel / 4, 256, 256) == doctest::Approx(-2.0));
 }
 
+TEST_CASE("texture: SIMD lod matches the scalar lod") {
+    constexpr std::size_t kCount = 500;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> derivative(-0.05f, 0.05f);
+    std::vector<std::vector<float>> d(4, std::vector<float>(padded_count(kCount)));
+    for (auto& channel : d)
+        for (float& value : channel) value = derivative(rng);
+    const DerivativeInputs in{kCount, d[0].data(), d[1].data(), d[2].data(), d[3].data()};
+    std::vector<float> expected(padded_count(kCount));
+    lod_from_derivatives(Isa::scalar, in, 512, 128, expected.data());
+    CHECK(expected[7] == lod_from_derivatives(d[0][7], d[1][7], d[2][7], d[3][7], 512, 128));
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!simd::isa_supported(isa)) continue;
+        std::vector<float> actual(padded_count(kCount));
+        lod_from_derivatives(isa, in, 512, 128, actual.data());
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < kCount; ++i) worst = std::max(worst, std::abs(actual[i] - expected[i]));
+        CHECK(worst <= 1e-5f);
+    }
+}
+
 TEST_CASE("texture: trilinear blends the two nearest levels") {
     const Texture texture = random_texture(16, 16, 3);
     const glm::vec2 uv(0.3f, 0.71f);
@@ -416,6 +437,21 @@ TEST_CASE("texture: SIMD trilinear matches the scalar sampler") {
                 for (const auto& channel : actual)
                     for (std::size_t i = padded; i < channel.size(); ++i) sentinels_intact &= channel[i] == kSentinel;
                 CHECK(sentinels_intact);
+
+                // Fewer channels: R alone, then RGB; the channels not asked for are not written.
+                for (const int channels : {1, 3}) {
+                    for (auto& channel : actual) channel.assign(padded + kSentinelLanes, kSentinel);
+                    sample_trilinear(isa, texture, wrap, in,
+                                     {actual[0].data(), channels > 1 ? actual[1].data() : nullptr,
+                                      channels > 1 ? actual[2].data() : nullptr, nullptr});
+                    float worst_subset = 0.0f;
+                    for (int c = 0; c < channels; ++c)
+                        for (std::size_t i = 0; i < kCount; ++i)
+                            worst_subset = std::max(worst_subset, std::abs(actual[c][i] - expected[c][i]));
+                    CHECK(worst_subset <= kTolerance);
+                    CHECK(actual[3][0] == kSentinel);
+                    if (channels == 1) CHECK(actual[1][0] == kSentinel);
+                }
             }
         }
     }
