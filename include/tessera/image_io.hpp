@@ -1,6 +1,17 @@
 // Writing rendered images. The format follows the file extension:
 // .png  display-referred RGB, 8 bits per channel (after tonemapping and gamma);
-// .exr  scene-linear HDR radiance, RGB half floats.
+//       AOVs are not written to PNG.
+// .exr  one multi-channel file: scene-linear HDR radiance as R G B (half), then
+//       each AOV plane the image has (RenderedImage::aov; values, spaces and
+//       background values documented at AovPlanes), named by the OpenEXR and
+//       OpenImageIO conventions:
+//         depth      Z                               float (ImageSpec::z_channel)
+//         normal     N.X N.Y N.Z                     float, world space, unit length
+//         albedo     albedo.R albedo.G albedo.B      half
+//         roughness  roughness                       half
+//         metallic   metallic                        half
+//         position   P.X P.Y P.Z                     float, world space
+//       OpenEXR keeps channels sorted by name; look them up by name when reading.
 #pragma once
 
 #include <filesystem>

@@ -4,11 +4,31 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tessera/scene.hpp"
 
 namespace tessera {
+
+// Arbitrary output variables: surface data per pixel, written beside the
+// radiance into the EXR (channel names in image_io.hpp).
+enum class Aov : std::uint8_t { depth, normal, albedo, roughness, metallic, position };
+inline constexpr Aov kAllAovs[] = {Aov::depth, Aov::normal, Aov::albedo, Aov::roughness, Aov::metallic, Aov::position};
+std::string_view aov_name(Aov aov);  // as the command line spells it: "depth", "normal", ...
+
+// A selection of AOVs, one bit per Aov.
+struct AovSet {
+    std::uint32_t bits = 0;
+    bool empty() const { return bits == 0; }
+    bool contains(Aov aov) const { return (bits >> unsigned(aov)) & 1u; }
+    void insert(Aov aov) { bits |= 1u << unsigned(aov); }
+    friend bool operator==(AovSet, AovSet) = default;
+};
+
+// Adds the AOVs of a comma-separated list ("depth,normal") to `set`; names
+// may repeat. Throws std::invalid_argument naming an unknown or empty entry.
+void parse_aov_list(std::string_view list, AovSet& set);
 
 struct RenderSettings {
     int threads = 0;        // worker threads; 0 = one per hardware thread
@@ -17,6 +37,32 @@ struct RenderSettings {
     // Fill RenderedImage::radiance (what EXR output needs). Without it a frame
     // writes only the 8-bit display image, as an OpenGL RGBA8 framebuffer would.
     bool keep_radiance = true;
+    // AOV planes to fill in RenderedImage::aov. None by default: a frame
+    // without AOVs neither allocates nor writes them.
+    AovSet aovs{};  // (an initializer, or designated initializers that leave it out warn)
+};
+
+// The AOV planes of a frame, row-major like the radiance, row 0 at the top.
+// A plane is empty unless RenderSettings::aovs asked for it. Values come from
+// the visible surface as the shader saw it (after texturing); background
+// pixels hold the value given for each.
+struct AovPlanes {
+    // Linear view-space depth: distance from the camera along its view axis
+    // (not along the pixel's ray), > 0, world units. Background: +infinity,
+    // farther than any surface, so a depth merge (min) keeps the other image.
+    std::vector<float> depth;
+    // World-space unit shading normal, XYZ interleaved (the interpolated vertex
+    // normal, or the normal-mapped one, normalized). Background: (0, 0, 0).
+    std::vector<float> normal;
+    std::vector<float> albedo;     // linear RGB interleaved, [0, 1]. Background: 0
+    std::vector<float> roughness;  // [0, 1]. Background: 0
+    std::vector<float> metallic;   // [0, 1]. Background: 0
+    std::vector<float> position;   // world-space point, XYZ interleaved, world units. Background: (0, 0, 0)
+
+    bool empty() const {
+        return depth.empty() && normal.empty() && albedo.empty() && roughness.empty() && metallic.empty() &&
+               position.empty();
+    }
 };
 
 // A rendered frame, row 0 at the top of the picture.
@@ -30,6 +76,7 @@ struct RenderedImage {
     // Display-referred RGB8 after Reinhard and gamma 1/2.2: what PNG stores.
     // Background pixels hold the clear colour, as glClear writes it.
     std::vector<std::uint8_t> display;
+    AovPlanes aov;
 };
 
 // What one frame did and where its time went, in milliseconds.

@@ -1,5 +1,7 @@
 // tessera: the command line. Parses arguments, runs the pipeline, and turns
 // every error into one line on stderr and a non-zero exit status.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -27,6 +29,7 @@ struct RenderCommand {
     int width = 0;                     // 0: the scene's own
     int height = 0;
     bool stats = false;
+    std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
 };
 
@@ -40,11 +43,19 @@ std::string output_path_for(std::string pattern, const std::string& scene_path) 
     return pattern;
 }
 
+bool is_exr_path(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr";
+}
+
 // Mistakes in the command itself, found before any scene is rendered.
 void check_render_command(const RenderCommand& cmd) {
     for (const std::string& out : cmd.outputs)
         if (!tessera::is_supported_image_path(out))
             throw tessera::ImageError(out + ": unsupported output format (expected .png or .exr)");
+    if (!cmd.aov_lists.empty() && std::none_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path))
+        throw std::invalid_argument("--aov needs an .exr output: PNG holds only the display image");
     if (cmd.scene_paths.size() < 2) return;
     for (const std::string& out : cmd.outputs) {
         if (out.find(kScenePlaceholder) == std::string::npos)
@@ -104,10 +115,8 @@ int run_render(const RenderCommand& cmd) {
     check_render_command(cmd);
     tessera::RenderSettings settings = cmd.settings;
     // The HDR radiance image costs memory bandwidth: keep it only for EXR output.
-    settings.keep_radiance = false;
-    for (const std::string& out : cmd.outputs)
-        if (std::filesystem::path(out).extension() == ".exr" || std::filesystem::path(out).extension() == ".EXR")
-            settings.keep_radiance = true;
+    settings.keep_radiance = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path);
+    for (const std::string& list : cmd.aov_lists) tessera::parse_aov_list(list, settings.aovs);
     tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from scene to scene
     std::vector<std::string> failed;
     for (const std::string& scene_path : cmd.scene_paths) {
@@ -157,6 +166,10 @@ int main(int argc, char** argv) {
                            "render, several files); {scene} stands for the scene file's stem and is required "
                            "with several scenes")
         ->required();
+    render_app->add_option("--aov", render.aov_lists,
+                           "Add surface data to every .exr output, a comma-separated list of depth, normal, albedo, "
+                           "roughness, metallic, position (channels Z, N.XYZ, albedo.RGB, roughness, metallic, P.XYZ)")
+        ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
     add_frame_options(render_app, render.width, render.height, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tessera::image {
 
@@ -33,6 +34,42 @@ void for_each_pixel(const raster::TileBuffers& coverage, const raster::TileRect&
     }
 }
 
+// Background values of the AOV planes (documented at AovPlanes).
+constexpr float kBackgroundDepth = std::numeric_limits<float>::infinity();
+
+void write_aov_background(AovPlanes& aov, std::size_t pixel) {
+    if (!aov.depth.empty()) aov.depth[pixel] = kBackgroundDepth;
+    if (!aov.normal.empty()) std::fill_n(&aov.normal[3 * pixel], 3, 0.0f);
+    if (!aov.albedo.empty()) std::fill_n(&aov.albedo[3 * pixel], 3, 0.0f);
+    if (!aov.roughness.empty()) aov.roughness[pixel] = 0.0f;
+    if (!aov.metallic.empty()) aov.metallic[pixel] = 0.0f;
+    if (!aov.position.empty()) std::fill_n(&aov.position[3 * pixel], 3, 0.0f);
+}
+
+void write_aov_fragment(AovPlanes& aov, std::size_t pixel, const shade::FragmentInputs& s, std::size_t k,
+                        const ViewDepth& view_depth) {
+    const float x = s.world_x[k], y = s.world_y[k], z = s.world_z[k];
+    if (!aov.depth.empty()) aov.depth[pixel] = view_depth(x, y, z);
+    if (!aov.normal.empty()) {
+        // The shader normalizes its input too; a degenerate normal becomes 0 rather than NaN.
+        const float nx = s.normal_x[k], ny = s.normal_y[k], nz = s.normal_z[k];
+        const float length = std::sqrt(nx * nx + ny * ny + nz * nz);
+        const float scale = length > 0.0f && std::isfinite(length) ? 1.0f / length : 0.0f;
+        float* n = &aov.normal[3 * pixel];
+        n[0] = nx * scale, n[1] = ny * scale, n[2] = nz * scale;
+    }
+    if (!aov.albedo.empty()) {
+        float* a = &aov.albedo[3 * pixel];
+        a[0] = s.albedo_r[k], a[1] = s.albedo_g[k], a[2] = s.albedo_b[k];
+    }
+    if (!aov.roughness.empty()) aov.roughness[pixel] = s.roughness[k];
+    if (!aov.metallic.empty()) aov.metallic[pixel] = s.metallic[k];
+    if (!aov.position.empty()) {
+        float* p = &aov.position[3 * pixel];
+        p[0] = x, p[1] = y, p[2] = z;
+    }
+}
+
 }  // namespace
 
 ClearValues clear_values(const glm::vec3& clear_color) {
@@ -53,6 +90,22 @@ void clear_tile(const raster::TileRect& rect, const ClearValues& clear, Rendered
             for (std::size_t i = first; i < end; i += 3)
                 image.radiance[i] = clear_radiance.r, image.radiance[i + 1] = clear_radiance.g,
                 image.radiance[i + 2] = clear_radiance.b;
+    }
+    if (image.aov.empty()) return;
+    for (int y = rect.y0; y < rect.y1; ++y)
+        for (int x = rect.x0; x < rect.x1; ++x) write_aov_background(image.aov, std::size_t(y) * image.width + x);
+}
+
+void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect,
+                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image) {
+    std::size_t k = 0;
+    for (int y = 0; y < rect.height(); ++y) {
+        const std::size_t tile_row = std::size_t(y) * coverage.side;
+        const std::size_t first = std::size_t(rect.y0 + y) * image.width + rect.x0;
+        for (int x = 0; x < rect.width(); ++x) {
+            if (coverage.covered(tile_row + x)) write_aov_fragment(image.aov, first + x, surface, k++, view_depth);
+            else write_aov_background(image.aov, first + x);
+        }
     }
 }
 

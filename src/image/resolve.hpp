@@ -38,7 +38,27 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
                   const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image);
 
-// Writes the clear colour over a tile no triangle touched.
+// Writes the clear colour over a tile no triangle touched, and the background
+// value into each AOV plane the image has.
 void clear_tile(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image);
+
+// Linear view-space depth of a world-space point, from the same view matrix
+// the vertex stage uses: -z in view space, i.e. the distance in front of the
+// camera along its view axis. Worked out once per frame.
+struct ViewDepth {
+    glm::vec4 minus_view_row_z{0.0f};  // -(row 2 of the view matrix)
+    explicit ViewDepth(const glm::mat4& view = glm::mat4(1.0f))
+        : minus_view_row_z(-view[0][2], -view[1][2], -view[2][2], -view[3][2]) {}
+    float operator()(float x, float y, float z) const {
+        return minus_view_row_z.x * x + minus_view_row_z.y * y + minus_view_row_z.z * z + minus_view_row_z.w;
+    }
+};
+
+// Writes one tile of each AOV plane the image has (RenderedImage::aov), each
+// pixel once: covered pixels take the next of `surface.count` fragments (the
+// shader's inputs, in the row-major order they were gathered), the others the
+// planes' background values.
+void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect,
+                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image);
 
 }  // namespace tessera::image

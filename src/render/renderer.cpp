@@ -85,7 +85,53 @@ void check_renderable(const Scene& scene) {
     }
 }
 
+// Sizes the AOV planes the settings ask for (memory kept from frame to
+// frame); the others stay empty and never allocate.
+void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
+    const auto size = [&](Aov which, std::vector<float>& plane, std::size_t per_pixel) {
+        if (!wanted.contains(which)) return plane.clear();
+        render::reserve_huge(plane, per_pixel * pixels);
+        plane.resize(per_pixel * pixels);
+    };
+    size(Aov::depth, aov.depth, 1);
+    size(Aov::normal, aov.normal, 3);
+    size(Aov::albedo, aov.albedo, 3);
+    size(Aov::roughness, aov.roughness, 1);
+    size(Aov::metallic, aov.metallic, 1);
+    size(Aov::position, aov.position, 3);
+}
+
 }  // namespace
+
+std::string_view aov_name(Aov aov) {
+    switch (aov) {
+    case Aov::depth: return "depth";
+    case Aov::normal: return "normal";
+    case Aov::albedo: return "albedo";
+    case Aov::roughness: return "roughness";
+    case Aov::metallic: return "metallic";
+    case Aov::position: return "position";
+    }
+    return "?";
+}
+
+void parse_aov_list(std::string_view list, AovSet& set) {
+    for (std::size_t begin = 0;;) {
+        const std::size_t comma = list.find(',', begin);
+        const std::string_view name = list.substr(begin, comma == std::string_view::npos ? comma : comma - begin);
+        const Aov* known = std::find_if(std::begin(kAllAovs), std::end(kAllAovs),
+                                        [&](Aov aov) { return name == aov_name(aov); });
+        if (known == std::end(kAllAovs)) {
+            std::string expected;
+            for (Aov aov : kAllAovs) expected += (expected.empty() ? "" : ", ") + std::string(aov_name(aov));
+            throw std::invalid_argument("unknown AOV '" + std::string(name) + "' in '" + std::string(list) +
+                                        "' (expected a comma-separated list of " + expected + ")");
+        }
+        set.insert(*known);
+        if (comma == std::string_view::npos) return;
+        begin = comma + 1;
+    }
+}
 
 struct Renderer::Frame {
     RenderSettings settings;
@@ -106,6 +152,7 @@ struct Renderer::Frame {
     std::size_t chunk_count = 0;
     raster::TileGrid grid;
     shade::ShadingLights lights;
+    image::ViewDepth view_depth;  // for the depth AOV
     tbb::enumerable_thread_specific<WorkerScratch> scratch;
 
     explicit Frame(const RenderSettings& s)
@@ -260,6 +307,8 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     }
     render::reserve_huge(image.display, 3 * pixels);
     image.display.resize(3 * pixels);
+    size_aov_planes(settings.aovs, pixels, image.aov);
+    view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
     const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
@@ -351,6 +400,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     const auto t2 = Clock::now();
 
     image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+    if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
     const auto t3 = Clock::now();
     s.rasterize_ms += ms_between(t0, t1);
     s.shade_ms += ms_between(t1, t2);

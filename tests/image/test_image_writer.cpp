@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 
 #include "image/resolve.hpp"
 #include "shade/pbr_reference.hpp"
@@ -57,6 +58,33 @@ TEST_CASE("EXR stores scene-linear radiance as half floats") {
     std::vector<float> pixels(image.radiance.size());
     read.get_pixels(read.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
     for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(pixels[i] == doctest::Approx(image.radiance[i]).epsilon(1e-3));
+}
+
+TEST_CASE("AOV planes go to the EXR only, and must cover the image") {
+    const auto dir = test::output_dir("image_writer_aov");
+    RenderedImage image = gradient_image();
+    write_image(image, dir / "plain.png");
+    image.aov.depth.assign(std::size_t(image.width) * image.height, 2.5f);
+    write_image(image, dir / "depth.png");
+    OIIO::ImageBuf plain((dir / "plain.png").string()), with_depth((dir / "depth.png").string());
+    REQUIRE(with_depth.read(0, 0, true, OIIO::TypeDesc::UINT8));
+    CHECK(with_depth.spec().nchannels == 3);
+    CHECK(OIIO::ImageBufAlgo::compare(plain, with_depth, 0.0f, 0.0f).maxerror == 0.0);
+
+    write_image(image, dir / "depth.exr");
+    OIIO::ImageBuf exr((dir / "depth.exr").string());
+    REQUIRE(exr.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    REQUIRE(exr.spec().nchannels == 4);
+    const int z = exr.spec().channelindex("Z");
+    REQUIRE(z >= 0);
+    CHECK(exr.getchannel(6, 4, 0, z) == 2.5f);
+    CHECK(exr.spec().channelindex("R") >= 0);
+
+    image.aov.normal.assign(5, 0.0f);  // not 3 values per pixel
+    CHECK_THROWS_WITH_AS(write_image(image, dir / "short_normal.exr"),
+                         doctest::Contains("normal plane holds 5 values, not 105"), ImageError);
+    CHECK_FALSE(std::filesystem::exists(dir / "short_normal.exr"));
+    CHECK_FALSE(leftover_temporaries(dir));
 }
 
 TEST_CASE("bad output paths are refused with the path in the message and nothing left behind") {

@@ -1,6 +1,7 @@
 // The tessera binary on bad input: a non-zero exit, one clear line on stderr
 // (file:line:column for scene errors), no output file, and no earlier file lost.
-// Also several scenes in one call, with {scene} in the output names.
+// Also several scenes in one call, with {scene} in the output names, and
+// --aov beside PNG output.
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -178,6 +179,21 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
         CHECK(run.status == 1);
         CHECK(contains(run.err, "tile size must be a power of two"));
     }
+    SUBCASE("an unknown AOV name, or AOVs without an EXR output") {
+        const fs::path exr = dir / "aov.exr";
+        fs::remove(exr);
+        fs::remove(out);
+        Run run = tessera_render(dir, {scene.string(), "-o", exr.string(), "--aov", "depth,colour"});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "unknown AOV 'colour' in 'depth,colour' (expected a comma-separated list of depth, "
+                                "normal, albedo, roughness, metallic, position)"));
+        CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+        CHECK_FALSE(fs::exists(exr));
+        run = tessera_render(dir, {scene.string(), "-o", out, "--aov", "depth"});
+        CHECK(run.status == 1);
+        CHECK(contains(run.err, "--aov needs an .exr output"));
+        CHECK_FALSE(fs::exists(out));
+    }
     SUBCASE("no output file") {
         const Run run = tessera_render(dir, {scene.string()});
         CHECK(run.status > 0);
@@ -269,4 +285,20 @@ TEST_CASE("several scenes in one call: {scene} names the outputs, a failure does
         CHECK(run.out.empty());  // no summary line for a single scene
         CHECK(fs::exists(dir / "plain.png"));
     }
+}
+
+TEST_CASE("--aov adds channels to the EXR and leaves the PNG as it was") {
+    const fs::path dir = tessera::test::output_dir("cli_aov");
+    const fs::path scene = dir / "small.toml";
+    write_file(scene, kSmallScene);
+    REQUIRE(tessera_render(dir, {scene.string(), "-o", (dir / "plain.png").string(), "-o",
+                                 (dir / "plain.exr").string()}).status == 0);
+    // The scene file after --aov stays a scene: one list per --aov.
+    const Run run = tessera_render(dir, {"--aov", "depth,normal,albedo", "--aov", "roughness,metallic,position",
+                                         scene.string(), "-o", (dir / "aov.png").string(), "-o",
+                                         (dir / "aov.exr").string()});
+    CHECK(run.status == 0);
+    CHECK(run.err.empty());
+    CHECK(read_file(dir / "aov.png") == read_file(dir / "plain.png"));
+    CHECK(fs::file_size(dir / "aov.exr") > fs::file_size(dir / "plain.exr"));
 }
