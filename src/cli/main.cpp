@@ -148,6 +148,9 @@ void add_frame_options(CLI::App* command, int& width, int& height, tessera::Rend
         ->check(CLI::Range(0, 1024));
     command->add_option("--tile-size", settings.tile_size, "Screen tile side in pixels (power of two, 8-256)");
     command->add_option("--isa", settings.isa, "SIMD kernels: auto, scalar, sse4, avx2, avx512");
+    command->add_flag_callback(
+        "--no-light-culling", [&settings] { settings.light_culling = false; },
+        "Shade every light in every tile, ranges or not (to compare with the culled image)");
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ struct WorkerScratch {
     shade::FragmentBuffer fragments;
     std::vector<shade::MaterialRun> material_runs;
     shade::MaterialScratch material_scratch;
+    shade::ShadingLights tile_lights;  // the frame's lights that reach this tile (light culling)
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
@@ -310,6 +311,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     size_aov_planes(settings.aovs, pixels, image.aov);
     view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
+    for (WorkerScratch& s : scratch) s.tile_lights.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
@@ -393,7 +395,12 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     const shade::RadianceOutputs shaded = s.fragments.outputs();
     if (count > 0) {
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
-        shade::shade_fragments(isa, s.fragments.inputs(count), lights, shaded);
+        const shade::FragmentInputs inputs = s.fragments.inputs(count);
+        const shade::ShadingLights& tile_lights =
+            settings.light_culling && lights.any_range
+                ? shade::lights_reaching(lights, shade::fragment_bounds(inputs), s.tile_lights)
+                : lights;
+        shade::shade_fragments(isa, inputs, tile_lights, shaded);
         shade::add_emission(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;

@@ -18,9 +18,19 @@
 //   far = 100.0                     # view-space distance, > near; default 100
 //
 //   [[lights]]                      # any number, including none
-//   type = "point"                  # default "point"; the only supported type for now
-//   position = [-10, 10, 10]        # required, world space
-//   color = [300, 300, 300]         # required, linear RGB · distance², each >= 0
+//   type = "point"                  # "point" | "directional" | "spot"; default "point"
+//   position = [-10, 10, 10]        # point and spot: required, world space
+//   color = [300, 300, 300]         # required, linear RGB, each >= 0: radiance · distance² for
+//                                   # point and spot, the radiance itself for directional
+//   direction = [0, -1, 0]          # directional and spot: required, where the light travels;
+//                                   # any non-zero length (normalized at load)
+//   inner_cone = 0.0                # spot: full radiance within this angle of direction, degrees; default 0
+//   outer_cone = 45.0               # spot: no radiance beyond it, degrees; default 45; 0 <= inner < outer <= 90
+//   range = 12.5                    # point and spot: a number > 0, or "auto"; default unlimited.
+//                                   # Past its range a light may be culled per tile (Light::range);
+//                                   # "auto" is where max(color) / d² falls to kAutoRangeIrradiance (1/4096)
+//   A key that does not apply to the light's type (position of a directional light,
+//   cones of a point light...) is an error.
 //
 //   [materials.rusty]               # named materials, any number; defaults are Material{}'s
 //   albedo = [0.5, 0, 0]            # linear RGB, each in [0, 1]
@@ -83,7 +93,7 @@ namespace tessera {
 namespace {
 
 constexpr std::string_view kSupportedMeshes = "sphere, plane, cube";
-constexpr std::string_view kSupportedLightTypes = "point";
+constexpr std::string_view kSupportedLightTypes = "point, directional, spot";
 
 std::string_view type_name(toml::node_type type) {
     switch (type) {
@@ -335,25 +345,97 @@ private:
         return camera;
     }
 
+    LightType read_light_type(const toml::table& table, const std::string& name) const {
+        const toml::node* type = table.get("type");
+        if (type == nullptr) return LightType::point;
+        const std::string type_text = read_string(*type, child(name, "type"));
+        if (type_text == "point") return LightType::point;
+        if (type_text == "directional") return LightType::directional;
+        if (type_text == "spot") return LightType::spot;
+        fail_at(type->source(), "unsupported light type '" + type_text + "' for '" + child(name, "type") +
+                                    "'; supported types: " + std::string(kSupportedLightTypes));
+    }
+
+    // A key given to a light type it does not apply to: an error, as unknown keys are.
+    void refuse_key(const toml::table& table, std::string_view key, const std::string& name,
+                    std::string_view type_text) const {
+        const toml::node* node = table.get(key);
+        if (node == nullptr) return;
+        fail_at(node->source(), "'" + child(name, key) + "' does not apply to a " + std::string(type_text) + " light");
+    }
+
+    float read_cone_degrees(const toml::node& node, const std::string& name) const {
+        const float degrees = read_float(node, name);
+        if (!(degrees >= 0.0f && degrees <= 90.0f)) {
+            fail_at(node.source(), "expected '" + name + "' to be in [0, 90] degrees, got " + to_text(degrees));
+        }
+        return degrees;
+    }
+
     void read_lights(const toml::node& node, Scene& scene) const {
         const toml::array& lights = array_of_tables(node, "lights");
         for (std::size_t i = 0; i < lights.size(); ++i) {
             const std::string name = "lights[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*lights.get(i), name);
-            check_keys(table, name, {"type", "position", "color"});
-            if (const toml::node* type = table.get("type")) {
-                const std::string type_text = read_string(*type, child(name, "type"));
-                if (type_text != "point") {
-                    fail_at(type->source(), "unsupported light type '" + type_text + "' for '" +
-                                                child(name, "type") + "'; supported types: " +
-                                                std::string(kSupportedLightTypes));
+            check_keys(table, name, {"type", "position", "color", "direction", "inner_cone", "outer_cone", "range"});
+            Light light;
+            light.type = read_light_type(table, name);
+            const std::string_view type_text = light.type == LightType::point         ? "point"
+                                               : light.type == LightType::directional ? "directional"
+                                                                                      : "spot";
+            light.color = read_vec3(require(table, "color", name), child(name, "color"), kNonNegative);
+            if (light.type == LightType::directional) {
+                refuse_key(table, "position", name, type_text);
+                refuse_key(table, "range", name, type_text);  // everywhere at once: nothing to cull by
+            } else {
+                light.position = read_vec3(require(table, "position", name), child(name, "position"));
+            }
+            if (light.type == LightType::point) {
+                refuse_key(table, "direction", name, type_text);
+            } else {
+                const toml::node& direction = require(table, "direction", name);
+                const glm::vec3 d = read_vec3(direction, child(name, "direction"));
+                // Squared length in double: components near 1e-20 are still a direction.
+                const double length = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+                if (!(length > 0.0)) {
+                    fail_at(direction.source(), "expected '" + child(name, "direction") + "' to be non-zero");
+                }
+                light.direction = glm::vec3(glm::dvec3(d) / length);
+            }
+            if (light.type != LightType::spot) {
+                refuse_key(table, "inner_cone", name, type_text);
+                refuse_key(table, "outer_cone", name, type_text);
+            } else {
+                const toml::node* inner = table.get("inner_cone");
+                const toml::node* outer = table.get("outer_cone");
+                if (inner != nullptr) light.inner_cone_degrees = read_cone_degrees(*inner, child(name, "inner_cone"));
+                if (outer != nullptr) light.outer_cone_degrees = read_cone_degrees(*outer, child(name, "outer_cone"));
+                if (!(light.inner_cone_degrees < light.outer_cone_degrees)) {
+                    const toml::node* at = inner != nullptr ? inner : outer;
+                    fail_at(at->source(), "expected '" + child(name, "inner_cone") + "' < '" +
+                                              child(name, "outer_cone") + "', got inner = " +
+                                              to_text(light.inner_cone_degrees) +
+                                              ", outer = " + to_text(light.outer_cone_degrees));
                 }
             }
-            Light light;
-            light.position = read_vec3(require(table, "position", name), child(name, "position"));
-            light.color = read_vec3(require(table, "color", name), child(name, "color"), kNonNegative);
+            if (const toml::node* range = table.get("range")) light.range = read_range(*range, child(name, "range"), light);
             scene.lights.push_back(light);
         }
+    }
+
+    float read_range(const toml::node& node, const std::string& name, const Light& light) const {
+        if (const auto* text = node.as_string()) {
+            if (text->get() != "auto") {
+                fail_at(node.source(), "expected a number > 0 or \"auto\" for '" + name + "', got \"" + text->get() + "\"");
+            }
+            return auto_light_range(light.color);
+        }
+        if (!node.is_number()) fail_type(node, "a number > 0 or \"auto\"", name);
+        const float range = read_float(node, name);
+        if (!(range > 0.0f)) {
+            fail_at(node.source(), "expected '" + name + "' to be > 0 (leave it out for unlimited), got " + to_text(range));
+        }
+        return range;
     }
 
     Material read_material(const toml::table& table, const std::string& name) {
@@ -555,6 +637,11 @@ private:
 };
 
 }  // namespace
+
+float auto_light_range(const glm::vec3& color) {
+    const float brightest = std::max({color.r, color.g, color.b});
+    return std::max(std::sqrt(brightest / kAutoRangeIrradiance), std::numeric_limits<float>::min());
+}
 
 Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
     const std::string source(source_name);

@@ -31,6 +31,23 @@ glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0) {
     return f0 + (1.0f - f0) * std::pow(glm::clamp(1.0f - cos_theta, 0.0f, 1.0f), 5.0f);
 }
 
+float spot_cone_factor(const Light& light, const glm::vec3& light_to_fragment) {
+    const float cos_theta = glm::dot(light.direction, light_to_fragment);
+    const float cos_inner = std::cos(glm::radians(light.inner_cone_degrees));
+    const float cos_outer = std::cos(glm::radians(light.outer_cone_degrees));
+    return glm::clamp((cos_theta - cos_outer) / (cos_inner - cos_outer), 0.0f, 1.0f);
+}
+
+IncidentLight incident_light(const Light& light, const glm::vec3& world_pos) {
+    if (light.type == LightType::directional) return {-light.direction, light.color};  // no attenuation
+    // Point and spot: the GLSL's loop body.
+    const glm::vec3 l = glm::normalize(light.position - world_pos);
+    const float distance = glm::length(light.position - world_pos);
+    const glm::vec3 radiance = light.color / (distance * distance);
+    if (light.type == LightType::point) return {l, radiance};
+    return {l, radiance * spot_cone_factor(light, -l)};
+}
+
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
                     const glm::vec3& cam_pos, std::span<const Light> lights) {
     const glm::vec3& albedo = material.albedo;
@@ -43,10 +60,8 @@ glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const M
 
     glm::vec3 lo(0.0f);
     for (const Light& light : lights) {
-        const glm::vec3 l = glm::normalize(light.position - world_pos);
+        const auto [l, radiance] = incident_light(light, world_pos);
         const glm::vec3 h = glm::normalize(v + l);
-        const float distance = glm::length(light.position - world_pos);
-        const glm::vec3 radiance = light.color / (distance * distance);
 
         const float ndf = distribution_ggx(n, h, roughness);
         const float g = geometry_smith(n, v, l, roughness);

@@ -21,8 +21,20 @@ float geometry_schlick_ggx(float n_dot_v, float roughness);
 float geometry_smith(const glm::vec3& n, const glm::vec3& v, const glm::vec3& l, float roughness);
 glm::vec3 fresnel_schlick(float cos_theta, const glm::vec3& f0);
 
+// The reference's spot falloff, clamp((cos θ − cos outer)/(cos inner − cos outer), 0, 1),
+// θ being the angle between the light's direction and light_to_fragment (unit).
+float spot_cone_factor(const Light& light, const glm::vec3& light_to_fragment);
+
+// What one light sends to world_pos: l, the unit direction towards the light
+// (the GLSL's L), and the radiance arriving along it.
+struct IncidentLight {
+    glm::vec3 l;
+    glm::vec3 radiance;
+};
+IncidentLight incident_light(const Light& light, const glm::vec3& world_pos);
+
 // Scene-linear HDR radiance leaving world_pos towards cam_pos (the GLSL's `color`
-// before tonemapping). normal need not be unit length: it is normalized here, as the GLSL does.
+// before tonemapping), every light shaded whatever its range. normal need not be unit length: it is normalized here, as the GLSL does.
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
                     const glm::vec3& cam_pos, std::span<const Light> lights);
 

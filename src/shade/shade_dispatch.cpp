@@ -1,5 +1,6 @@
 // Run-time choice of the fragment kernels. Built at baseline x86-64: no batch
 // types here, only the per-ISA entry points of shade_kernels_simd.cpp.
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -9,11 +10,9 @@
 
 namespace tessera::shade {
 
-// Defined in shade_kernels_simd.cpp, once per ISA. light_arrays are pos_x,
-// pos_y, pos_z, color_r, color_g, color_b, each light_count floats.
+// Defined in shade_kernels_simd.cpp, once per ISA.
 #define TESSERA_DECLARE_SIMD_ENTRIES(suffix)                                                                  \
-    void shade_fragments_##suffix(const FragmentInputs& in, std::size_t light_count,                           \
-                                  const float* const light_arrays[6], const glm::vec3& cam_pos,                \
+    void shade_fragments_##suffix(const FragmentInputs& in, const LightArrays& lights, const glm::vec3& cam_pos, \
                                   const RadianceOutputs& out);                                                 \
     void tonemap_gamma_##suffix(std::size_t count, float* r, float* g, float* b);
 TESSERA_DECLARE_SIMD_ENTRIES(sse4)
@@ -21,20 +20,101 @@ TESSERA_DECLARE_SIMD_ENTRIES(avx2)
 TESSERA_DECLARE_SIMD_ENTRIES(avx512)
 #undef TESSERA_DECLARE_SIMD_ENTRIES
 
-void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Light> lights) {
-    cam_pos = camera_position;
-    for (std::vector<float>* column : {&pos_x, &pos_y, &pos_z, &color_r, &color_g, &color_b}) {
+namespace {
+
+// Appends one light to the SoA columns (which must already hold its type group's predecessors).
+void push_light(ShadingLights& soa, const Light& light) {
+    soa.pos_x.push_back(light.position.x);
+    soa.pos_y.push_back(light.position.y);
+    soa.pos_z.push_back(light.position.z);
+    soa.color_r.push_back(light.color.r);
+    soa.color_g.push_back(light.color.g);
+    soa.color_b.push_back(light.color.b);
+    soa.dir_x.push_back(light.direction.x);
+    soa.dir_y.push_back(light.direction.y);
+    soa.dir_z.push_back(light.direction.z);
+    // As spot_cone_factor works them out, so that the kernels use the same cosines.
+    const float cos_inner = std::cos(glm::radians(light.inner_cone_degrees));
+    const float cos_outer = std::cos(glm::radians(light.outer_cone_degrees));
+    soa.cos_outer.push_back(cos_outer);
+    soa.inv_cone_width.push_back(light.type == LightType::spot ? 1.0f / (cos_inner - cos_outer) : 0.0f);
+    soa.range.push_back(light.type == LightType::directional ? 0.0f : light.range);
+    soa.records.push_back(light);
+}
+
+// Appends light j of `all`, its constants already worked out.
+void copy_light(ShadingLights& soa, const ShadingLights& all, std::size_t j) {
+    for (auto column : {&ShadingLights::pos_x, &ShadingLights::pos_y, &ShadingLights::pos_z, &ShadingLights::color_r,
+                        &ShadingLights::color_g, &ShadingLights::color_b, &ShadingLights::dir_x, &ShadingLights::dir_y,
+                        &ShadingLights::dir_z, &ShadingLights::cos_outer, &ShadingLights::inv_cone_width,
+                        &ShadingLights::range})
+        (soa.*column).push_back((all.*column)[j]);
+    soa.records.push_back(all.records[j]);
+}
+
+void clear_columns(ShadingLights& soa) {
+    for (std::vector<float>* column : {&soa.pos_x, &soa.pos_y, &soa.pos_z, &soa.color_r, &soa.color_g, &soa.color_b,
+                                       &soa.dir_x, &soa.dir_y, &soa.dir_z, &soa.cos_outer, &soa.inv_cone_width,
+                                       &soa.range})
         column->clear();
-        column->reserve(lights.size());
+    soa.records.clear();
+    soa.spot_begin = soa.directional_begin = 0;
+    soa.any_range = false;
+}
+
+}  // namespace
+
+void ShadingLights::reserve(std::size_t capacity) {
+    for (std::vector<float>* column : {&pos_x, &pos_y, &pos_z, &color_r, &color_g, &color_b, &dir_x, &dir_y, &dir_z,
+                                       &cos_outer, &inv_cone_width, &range})
+        column->reserve(capacity);
+    records.reserve(capacity);
+}
+
+void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Light> lights) {
+    clear_columns(*this);
+    reserve(lights.size());
+    cam_pos = camera_position;
+    for (const LightType type : {LightType::point, LightType::spot, LightType::directional}) {
+        if (type == LightType::spot) spot_begin = count();
+        if (type == LightType::directional) directional_begin = count();
+        for (const Light& light : lights)
+            if (light.type == type) push_light(*this, light);
     }
-    for (const Light& light : lights) {
-        pos_x.push_back(light.position.x);
-        pos_y.push_back(light.position.y);
-        pos_z.push_back(light.position.z);
-        color_r.push_back(light.color.r);
-        color_g.push_back(light.color.g);
-        color_b.push_back(light.color.b);
+    for (const float r : range) any_range = any_range || r > 0.0f;
+}
+
+WorldBounds fragment_bounds(const FragmentInputs& in) {
+    WorldBounds b{{in.world_x[0], in.world_y[0], in.world_z[0]}, {in.world_x[0], in.world_y[0], in.world_z[0]}};
+    for (std::size_t i = 1; i < in.count; ++i) {
+        const glm::vec3 p(in.world_x[i], in.world_y[i], in.world_z[i]);
+        b.min = glm::min(b.min, p);
+        b.max = glm::max(b.max, p);
     }
+    return b;
+}
+
+const ShadingLights& lights_reaching(const ShadingLights& all, const WorldBounds& bounds, ShadingLights& subset) {
+    if (!all.any_range) return all;
+    clear_columns(subset);
+    subset.cam_pos = all.cam_pos;
+    for (std::size_t j = 0; j < all.count(); ++j) {
+        if (j == all.spot_begin) subset.spot_begin = subset.count();
+        if (j == all.directional_begin) subset.directional_begin = subset.count();
+        const float range = all.range[j];
+        if (range > 0.0f) {
+            // Squared distance from the light to the nearest point of the box.
+            const glm::vec3 position(all.pos_x[j], all.pos_y[j], all.pos_z[j]);
+            const glm::vec3 gap = glm::max(glm::max(bounds.min - position, position - bounds.max), glm::vec3(0.0f));
+            if (glm::dot(gap, gap) > range * range) continue;
+        }
+        copy_light(subset, all, j);
+    }
+    // Groups that end at the very end were never reached in the loop.
+    if (all.spot_begin == all.count()) subset.spot_begin = subset.count();
+    if (all.directional_begin == all.count()) subset.directional_begin = subset.count();
+    subset.any_range = true;
+    return subset;
 }
 
 namespace {
@@ -42,18 +122,12 @@ namespace {
 glm::vec3 load_vec3(const float* x, const float* y, const float* z, std::size_t i) { return {x[i], y[i], z[i]}; }
 
 void shade_fragments_scalar(const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
-    // Rebuilt per call (once per tile batch, not per fragment): the SoA lights back to the reference's form.
-    std::vector<Light> point_lights(lights.count());
-    for (std::size_t j = 0; j < point_lights.size(); ++j) {
-        point_lights[j].position = load_vec3(lights.pos_x.data(), lights.pos_y.data(), lights.pos_z.data(), j);
-        point_lights[j].color = load_vec3(lights.color_r.data(), lights.color_g.data(), lights.color_b.data(), j);
-    }
     for (std::size_t i = 0; i < in.count; ++i) {
         const Material material{.albedo = load_vec3(in.albedo_r, in.albedo_g, in.albedo_b, i), .metallic = in.metallic[i],
                                 .roughness = in.roughness[i], .ao = in.ao[i]};
         const glm::vec3 radiance =
             shade_pbr(load_vec3(in.world_x, in.world_y, in.world_z, i),
-                      load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos, point_lights);
+                      load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos, lights.records);
         out.r[i] = radiance.r;
         out.g[i] = radiance.g;
         out.b[i] = radiance.b;
@@ -73,13 +147,16 @@ void tonemap_gamma_scalar(std::size_t count, float* r, float* g, float* b) {
 
 void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
     simd::require_supported(isa);
-    const float* const light_arrays[6] = {lights.pos_x.data(),   lights.pos_y.data(),   lights.pos_z.data(),
-                                          lights.color_r.data(), lights.color_g.data(), lights.color_b.data()};
+    const LightArrays arrays{lights.spot_begin,       lights.directional_begin, lights.count(),
+                             lights.pos_x.data(),     lights.pos_y.data(),      lights.pos_z.data(),
+                             lights.color_r.data(),   lights.color_g.data(),    lights.color_b.data(),
+                             lights.dir_x.data(),     lights.dir_y.data(),      lights.dir_z.data(),
+                             lights.cos_outer.data(), lights.inv_cone_width.data()};
     switch (isa) {
         case Isa::scalar: return shade_fragments_scalar(in, lights, out);
-        case Isa::sse4: return shade_fragments_sse4(in, lights.count(), light_arrays, lights.cam_pos, out);
-        case Isa::avx2: return shade_fragments_avx2(in, lights.count(), light_arrays, lights.cam_pos, out);
-        case Isa::avx512: return shade_fragments_avx512(in, lights.count(), light_arrays, lights.cam_pos, out);
+        case Isa::sse4: return shade_fragments_sse4(in, arrays, lights.cam_pos, out);
+        case Isa::avx2: return shade_fragments_avx2(in, arrays, lights.cam_pos, out);
+        case Isa::avx512: return shade_fragments_avx512(in, arrays, lights.cam_pos, out);
     }
 }
 

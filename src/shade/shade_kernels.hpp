@@ -44,15 +44,54 @@ struct RadianceOutputs {
     float* b = nullptr;
 };
 
-// Point lights and camera in SoA form, built once per frame.
-struct ShadingLights {
-    glm::vec3 cam_pos{0.0f};
-    std::vector<float> pos_x, pos_y, pos_z;    // world space
-    std::vector<float> color_r, color_g, color_b;
-    std::size_t count() const { return pos_x.size(); }
-    void assign(const glm::vec3& camera_position, std::span<const Light> lights);
+// Bounds of a set of world-space points (a tile's visible fragments).
+struct WorldBounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
 };
 
+// The lights and camera in SoA form, built once per frame, grouped by type so
+// that the kernels branch per group, never per lane or per light: points
+// [0, spot_begin), spots [spot_begin, directional_begin), directionals
+// [directional_begin, count()), each group in scene order.
+struct ShadingLights {
+    glm::vec3 cam_pos{0.0f};
+    std::size_t spot_begin = 0;
+    std::size_t directional_begin = 0;
+    std::vector<float> pos_x, pos_y, pos_z;    // world space; point and spot
+    std::vector<float> color_r, color_g, color_b;
+    std::vector<float> dir_x, dir_y, dir_z;    // where the light travels, unit; spot and directional
+    // Spot cone, worked out once: factor = clamp((cos θ − cos_outer)·inv_cone_width, 0, 1),
+    // inv_cone_width = 1/(cos inner − cos outer).
+    std::vector<float> cos_outer, inv_cone_width;
+    std::vector<float> range;                  // Light::range; 0 = never culled
+    std::vector<Light> records;                // the same lights as given, for the scalar path
+    bool any_range = false;                    // whether culling could drop any light at all
+
+    std::size_t count() const { return pos_x.size(); }
+    // Every light of `lights`, in type groups.
+    void assign(const glm::vec3& camera_position, std::span<const Light> lights);
+    // Room for `capacity` lights, so that later assigns and culls up to that count allocate nothing.
+    void reserve(std::size_t capacity);
+};
+
+// The raw arrays of ShadingLights, as the per-ISA kernels take them (no
+// std::vector code is compiled for a wider ISA and shared with baseline callers).
+struct LightArrays {
+    std::size_t spot_begin, directional_begin, count;
+    const float *pos_x, *pos_y, *pos_z, *color_r, *color_g, *color_b, *dir_x, *dir_y, *dir_z, *cos_outer,
+        *inv_cone_width;
+};
+
+// The axis-aligned bounds of fragments' world positions; count > 0.
+WorldBounds fragment_bounds(const FragmentInputs& in);
+
+// Per-tile light culling: every light of `all` whose range sphere reaches
+// `bounds`, and every light without a range, into `subset` (type groups and
+// order kept). Returns `all` itself when no light has a range, so that culling
+// cannot change such scenes by a bit. `subset` should be reserved for
+// all.count() lights beforehand; then this allocates nothing.
+const ShadingLights& lights_reaching(const ShadingLights& all, const WorldBounds& bounds, ShadingLights& subset);
 // Which code runs the kernels. `scalar` calls the reference shader per fragment.
 using simd::Isa;
 using simd::isa_name;

@@ -7,7 +7,9 @@
 // Same terms, same names as the reference; the differences are algebra only:
 // per-fragment terms (a², k, G(N·V), F0, diffuse albedo) are hoisted out of the
 // light loop, the normalizations multiply by 1/sqrt, and the specular fraction
-// NDF·G / (4·N·V·N·L + 0.0001) is evaluated with one division.
+// NDF·G / (4·N·V·N·L + 0.0001) is evaluated with one division, and the spot
+// cone divides by cos inner − cos outer as a multiply by its reciprocal
+// (ShadingLights works it out once per frame).
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -69,73 +71,96 @@ Batch fresnel_schlick_weight(const Batch& cos_theta) {
 
 Batch fresnel_schlick(const Batch& weight, const Batch& f0) { return f0 + (Batch(1.0f) - f0) * weight; }
 
-struct LightSoa {
-    std::size_t count;
-    const float* pos_x;
-    const float* pos_y;
-    const float* pos_z;
-    const float* color_r;
-    const float* color_g;
-    const float* color_b;
+// A fragment batch's terms that do not depend on the light.
+struct Surface {
+    Vec3 world_pos, n, v, f0, diffuse;
+    Batch a2, k, spec_numerator, four_n_dot_v;
 };
 
-void shade_batch(const FragmentInputs& in, std::size_t i, const LightSoa& lights, const Vec3& cam_pos,
+// lo += one light's reflected radiance: l is the unit direction towards the
+// light, attenuation the radiance arriving per unit of light colour. Always
+// inlined: a call would move the accumulators through memory in the hot loop.
+[[gnu::always_inline]] inline void add_light(Vec3& lo, const Surface& s, const Vec3& l, const Batch& attenuation, float color_r,
+                      float color_g, float color_b) {
+    const Vec3 half = s.v + l;
+    const Batch inv_half_length = inverse_length(half);
+
+    const Batch n_dot_l = max0(dot(s.n, l));
+    const Batch n_dot_h = max0(dot(s.n, half) * inv_half_length);
+    const Batch h_dot_v = max0(dot(half, s.v) * inv_half_length);
+
+    // specular / F = NDF·G / (4·N·V·N·L + 0.0001)
+    //   with NDF = a² / (π·denom²), G = G(N·V)·N·L / geometry_schlick_ggx_denom(N·L)
+    const Batch ggx_denom = distribution_ggx_denom(n_dot_h, s.a2);
+    const Batch spec_denominator = ggx_denom * ggx_denom * geometry_schlick_ggx_denom(n_dot_l, s.k) *
+                                   (s.four_n_dot_v * n_dot_l + Batch(0.0001f));
+    const Batch specular_scale = s.spec_numerator * n_dot_l / spec_denominator;
+
+    const Batch fresnel_weight = fresnel_schlick_weight(h_dot_v);
+    const Batch irradiance_scale = attenuation * n_dot_l;
+    // lo += (k_D·albedo/π + specular) · radiance · N·L, per channel
+    const auto add_channel = [&](Batch& lo_c, const Batch& f0_c, const Batch& diffuse_c, float color_c) {
+        const Batch f = fresnel_schlick(fresnel_weight, f0_c);
+        lo_c += ((Batch(1.0f) - f) * diffuse_c + specular_scale * f) * (irradiance_scale * Batch(color_c));
+    };
+    add_channel(lo.x, s.f0.x, s.diffuse.x, color_r);
+    add_channel(lo.y, s.f0.y, s.diffuse.y, color_g);
+    add_channel(lo.z, s.f0.z, s.diffuse.z, color_b);
+}
+
+void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
                  const RadianceOutputs& out) {
-    const Vec3 world_pos = load3(in.world_x, in.world_y, in.world_z, i);
+    Surface s;
+    s.world_pos = load3(in.world_x, in.world_y, in.world_z, i);
     const Vec3 albedo = load3(in.albedo_r, in.albedo_g, in.albedo_b, i);
     const Batch metallic = xsimd::load_unaligned(in.metallic + i);
     const Batch roughness = xsimd::load_unaligned(in.roughness + i);
     const Batch ao = xsimd::load_unaligned(in.ao + i);
 
-    const Vec3 n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
-    const Vec3 v = normalize(cam_pos - world_pos);
+    s.n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
+    s.v = normalize(cam_pos - s.world_pos);
     const Batch f0_base(0.04f);  // mix(vec3(0.04), albedo, metallic)
-    const Vec3 f0 = {f0_base + (albedo.x - f0_base) * metallic, f0_base + (albedo.y - f0_base) * metallic,
-                     f0_base + (albedo.z - f0_base) * metallic};
+    s.f0 = {f0_base + (albedo.x - f0_base) * metallic, f0_base + (albedo.y - f0_base) * metallic,
+            f0_base + (albedo.z - f0_base) * metallic};
 
     // Per fragment, constant over the lights.
     const Batch a = roughness * roughness;
-    const Batch a2 = a * a;
+    s.a2 = a * a;
     const Batch r = roughness + Batch(1.0f);
-    const Batch k = (r * r) * Batch(1.0f / 8.0f);
-    const Batch n_dot_v = max0(dot(n, v));
-    const Batch g_v = geometry_schlick_ggx(n_dot_v, k);
-    const Batch spec_numerator = a2 * g_v * Batch(1.0f / kPi);  // the per-fragment part of NDF·G
-    const Batch four_n_dot_v = Batch(4.0f) * n_dot_v;
+    s.k = (r * r) * Batch(1.0f / 8.0f);
+    const Batch n_dot_v = max0(dot(s.n, s.v));
+    const Batch g_v = geometry_schlick_ggx(n_dot_v, s.k);
+    s.spec_numerator = s.a2 * g_v * Batch(1.0f / kPi);  // the per-fragment part of NDF·G
+    s.four_n_dot_v = Batch(4.0f) * n_dot_v;
     // k_D·albedo/π = (1 − F)·diffuse, k_D = (1 − F)·(1 − metallic)
     const Batch diffuse_scale = (Batch(1.0f) - metallic) * Batch(1.0f / kPi);
-    const Vec3 diffuse = albedo * diffuse_scale;
+    s.diffuse = albedo * diffuse_scale;
 
+    // One loop per light type: the type is uniform over a light, so it costs no lane math.
     Vec3 lo = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
-    for (std::size_t j = 0; j < lights.count; ++j) {
-        const Vec3 to_light = Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - world_pos;
+    for (std::size_t j = 0; j < lights.spot_begin; ++j) {  // point: radiance = color / distance²
+        const Vec3 to_light =
+            Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
+        const Batch inv_distance = inverse_length(to_light);
+        add_light(lo, s, to_light * inv_distance, inv_distance * inv_distance, lights.color_r[j], lights.color_g[j],
+                  lights.color_b[j]);
+    }
+    for (std::size_t j = lights.spot_begin; j < lights.directional_begin; ++j) {  // spot: a point light × cone factor
+        const Vec3 to_light =
+            Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
         const Batch inv_distance = inverse_length(to_light);
         const Vec3 l = to_light * inv_distance;
-        const Vec3 half = v + l;
-        const Batch inv_half_length = inverse_length(half);
-        const Batch attenuation = inv_distance * inv_distance;  // radiance = color / distance²
-
-        const Batch n_dot_l = max0(dot(n, l));
-        const Batch n_dot_h = max0(dot(n, half) * inv_half_length);
-        const Batch h_dot_v = max0(dot(half, v) * inv_half_length);
-
-        // specular / F = NDF·G / (4·N·V·N·L + 0.0001)
-        //   with NDF = a² / (π·denom²), G = G(N·V)·N·L / geometry_schlick_ggx_denom(N·L)
-        const Batch ggx_denom = distribution_ggx_denom(n_dot_h, a2);
-        const Batch spec_denominator = ggx_denom * ggx_denom * geometry_schlick_ggx_denom(n_dot_l, k) *
-                                       (four_n_dot_v * n_dot_l + Batch(0.0001f));
-        const Batch specular_scale = spec_numerator * n_dot_l / spec_denominator;
-
-        const Batch fresnel_weight = fresnel_schlick_weight(h_dot_v);
-        const Batch irradiance_scale = attenuation * n_dot_l;
-        // lo += (k_D·albedo/π + specular) · radiance · N·L, per channel
-        const auto add_channel = [&](Batch& lo_c, const Batch& f0_c, const Batch& diffuse_c, float color_c) {
-            const Batch f = fresnel_schlick(fresnel_weight, f0_c);
-            lo_c += ((Batch(1.0f) - f) * diffuse_c + specular_scale * f) * (irradiance_scale * Batch(color_c));
-        };
-        add_channel(lo.x, f0.x, diffuse.x, lights.color_r[j]);
-        add_channel(lo.y, f0.y, diffuse.y, lights.color_g[j]);
-        add_channel(lo.z, f0.z, diffuse.z, lights.color_b[j]);
+        // cos θ = direction · (light to fragment) = −(direction · L)
+        const Batch cos_theta = -dot(Vec3{Batch(lights.dir_x[j]), Batch(lights.dir_y[j]), Batch(lights.dir_z[j])}, l);
+        const Batch cone = (cos_theta - Batch(lights.cos_outer[j])) * Batch(lights.inv_cone_width[j]);
+        // clamp to [0, 1], NaN first so that it becomes 0
+        const Batch cone_factor = xsimd::min(xsimd::max(cone, Batch(0.0f)), Batch(1.0f));
+        add_light(lo, s, l, inv_distance * inv_distance * cone_factor, lights.color_r[j], lights.color_g[j],
+                  lights.color_b[j]);
+    }
+    for (std::size_t j = lights.directional_begin; j < lights.count; ++j) {  // directional: L = −direction, no attenuation
+        const Vec3 l = {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
+        add_light(lo, s, l, Batch(1.0f), lights.color_r[j], lights.color_g[j], lights.color_b[j]);
     }
 
     const Batch ambient = Batch(0.03f) * ao;
@@ -153,14 +178,9 @@ Batch display_from_radiance(const Batch& hdr) {
 
 }  // namespace
 
-// Entry points, declared in shade_dispatch.cpp. The lights arrive as raw arrays,
-// not ShadingLights, so no std::vector code is compiled here for a wider ISA
-// and then shared (as an inline function) with the baseline callers.
-void TESSERA_SIMD_ENTRY(shade_fragments)(const FragmentInputs& in, std::size_t light_count,
-                                         const float* const light_arrays[6], const glm::vec3& cam_pos,
+// Entry points, declared in shade_dispatch.cpp.
+void TESSERA_SIMD_ENTRY(shade_fragments)(const FragmentInputs& in, const LightArrays& lights, const glm::vec3& cam_pos,
                                          const RadianceOutputs& out) {
-    const LightSoa lights{light_count,     light_arrays[0], light_arrays[1], light_arrays[2],
-                          light_arrays[3], light_arrays[4], light_arrays[5]};
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
     const std::size_t end = padded_count(in.count);
     for (std::size_t i = 0; i < end; i += Batch::size) shade_batch(in, i, lights, cam, out);

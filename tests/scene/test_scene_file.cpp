@@ -270,7 +270,8 @@ TEST_CASE("scene errors: structure") {
                     "test.toml:4:", "unknown key 'light' at top level",
                     "valid keys: output, camera, lights, materials, objects");
         CHECK_ERROR(with_camera("[[lights]]\nposition = [1, 2, 3]\ncolour = [1, 1, 1]\n"),
-                    "test.toml:6:1: unknown key 'colour' in 'lights[0]'; valid keys: type, position, color");
+                    "test.toml:6:1: unknown key 'colour' in 'lights[0]'; valid keys: type, position, color, direction, "
+                    "inner_cone, outer_cone, range");
         CHECK_ERROR(with_camera("[materials.m]\nmetalic = 1\n"),
                     "test.toml:5:1: unknown key 'metalic' in 'materials.m'; valid keys: albedo, metallic, "
                     "roughness, ao");
@@ -362,8 +363,9 @@ TEST_CASE("scene errors: values") {
                     "gold, steel");
         CHECK_ERROR(with_camera("[[objects]]\nmesh = \"cube\"\nmaterial = \"copper\"\n"),
                     "test.toml:6:12: unknown material 'copper'", "no materials are defined");
-        CHECK_ERROR(with_camera("[[lights]]\ntype = \"spot\"\nposition = [1, 2, 3]\ncolor = [1, 1, 1]\n"),
-                    "test.toml:5:8: unsupported light type 'spot' for 'lights[0].type'; supported types: point");
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"area\"\nposition = [1, 2, 3]\ncolor = [1, 1, 1]\n"),
+                    "test.toml:5:8: unsupported light type 'area' for 'lights[0].type'; supported types: point, "
+                    "directional, spot");
     }
     SUBCASE("degenerate camera") {
         CHECK_ERROR("[camera]\nposition = [1, 2, 3]\ntarget = [1, 2, 3]\n",
@@ -399,4 +401,119 @@ TEST_CASE("textured.toml: one shared rust material, maps loaded once, factors 1"
     const tessera::Scene inline_scene = tessera::parse_scene(text, (path.parent_path() / "inline.toml").string());
     CHECK(inline_scene.materials.at(0).roughness == 0.5f);
     CHECK(inline_scene.materials.at(0).roughness_map.present());
+}
+
+TEST_CASE("scene file: light types") {
+    using tessera::LightType;
+    const Scene scene = tessera::parse_scene(with_camera(R"(
+[[lights]]
+position = [1, 2, 3]
+color = [4, 5, 6]
+
+[[lights]]
+type = "directional"
+direction = [0, -3, 4]
+color = [0.5, 1, 2]
+
+[[lights]]
+type = "spot"
+position = [0, 5, 0]
+direction = [0, -2, 0]
+color = [100, 100, 100]
+inner_cone = 10
+outer_cone = 30.5
+range = 12.5
+
+[[lights]]
+type = "spot"
+position = [0, 5, 0]
+direction = [1, 0, 0]
+color = [1, 9, 4]
+range = "auto"
+
+[[lights]]
+type = "point"
+position = [0, 0, 0]
+color = [0, 0, 0]
+range = "auto"
+)"), "test.toml");
+    REQUIRE(scene.lights.size() == 5);
+    const tessera::Light& point = scene.lights[0];
+    CHECK(point.type == LightType::point);
+    CHECK(point.position == glm::vec3(1, 2, 3));
+    CHECK(point.color == glm::vec3(4, 5, 6));
+    CHECK(point.range == 0.0f);  // unlimited unless given
+
+    const tessera::Light& sun = scene.lights[1];
+    CHECK(sun.type == LightType::directional);
+    CHECK(sun.color == glm::vec3(0.5f, 1.0f, 2.0f));
+    // Normalized at load: (0, −3, 4) / 5.
+    CHECK(sun.direction.x == 0.0f);
+    CHECK(sun.direction.y == doctest::Approx(-0.6));
+    CHECK(sun.direction.z == doctest::Approx(0.8));
+
+    const tessera::Light& spot = scene.lights[2];
+    CHECK(spot.type == LightType::spot);
+    CHECK(spot.position == glm::vec3(0, 5, 0));
+    CHECK(spot.direction == glm::vec3(0, -1, 0));
+    CHECK(spot.inner_cone_degrees == 10.0f);
+    CHECK(spot.outer_cone_degrees == 30.5f);
+    CHECK(spot.range == 12.5f);
+
+    // Cone defaults 0 and 45; range "auto" = sqrt(max(color) / (1/4096)) = sqrt(9·4096) = 192.
+    const tessera::Light& default_spot = scene.lights[3];
+    CHECK(default_spot.inner_cone_degrees == 0.0f);
+    CHECK(default_spot.outer_cone_degrees == 45.0f);
+    CHECK(default_spot.range == doctest::Approx(192.0));
+    CHECK(tessera::auto_light_range(glm::vec3(0.25f, 1.0f, 0.5f)) == doctest::Approx(64.0));
+    // A black light's auto range is the smallest there is, not 0 (= unlimited).
+    CHECK(scene.lights[4].range > 0.0f);
+    CHECK(scene.lights[4].range < 1e-30f);
+}
+
+TEST_CASE("scene errors: light types") {
+    SUBCASE("direction") {
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"directional\"\ncolor = [1, 1, 1]\n"),
+                    "test.toml:4:1: missing required key 'lights[0].direction'");
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\ndirection = [0, 0, 0]\n"),
+                    "test.toml:8:13: expected 'lights[0].direction' to be non-zero");
+        CHECK_ERROR(with_camera("[[lights]]\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\ndirection = [0, 0, 1]\n"),
+                    "test.toml:7:13: 'lights[0].direction' does not apply to a point light");
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"directional\"\ndirection = [0, nan, 1]\ncolor = [1, 1, 1]\n"),
+                    "test.toml:6:", "expected a finite number for 'lights[0].direction[1]'");
+    }
+    SUBCASE("keys that do not apply to the type") {
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"directional\"\nposition = [0, 0, 0]\ndirection = [0, 0, 1]\n"
+                                "color = [1, 1, 1]\n"),
+                    "test.toml:6:12: 'lights[0].position' does not apply to a directional light");
+        CHECK_ERROR(with_camera("[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 1]\ncolor = [1, 1, 1]\n"
+                                "range = 5\n"),
+                    "test.toml:8:9: 'lights[0].range' does not apply to a directional light");
+        CHECK_ERROR(with_camera("[[lights]]\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\nouter_cone = 30\n"),
+                    "test.toml:7:14: 'lights[0].outer_cone' does not apply to a point light");
+    }
+    SUBCASE("cones: 0 <= inner < outer <= 90") {
+        const std::string spot = "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]\ndirection = [0, 0, 1]\ncolor = [1, 1, 1]\n";
+        CHECK_ERROR(with_camera(spot + "inner_cone = -1\n"),
+                    "test.toml:9:14: expected 'lights[0].inner_cone' to be in [0, 90] degrees, got -1");
+        CHECK_ERROR(with_camera(spot + "outer_cone = 91\n"),
+                    "test.toml:9:14: expected 'lights[0].outer_cone' to be in [0, 90] degrees, got 91");
+        CHECK_ERROR(with_camera(spot + "inner_cone = 30\nouter_cone = 30\n"),
+                    "test.toml:9:14: expected 'lights[0].inner_cone' < 'lights[0].outer_cone', got inner = 30, outer = 30");
+        // The default outer cone is 45.
+        CHECK_ERROR(with_camera(spot + "inner_cone = 50\n"),
+                    "test.toml:9:14: expected 'lights[0].inner_cone' < 'lights[0].outer_cone', got inner = 50, outer = 45");
+        CHECK_ERROR(with_camera(spot + "outer_cone = 0\n"), "test.toml:9:14: expected 'lights[0].inner_cone' < ");
+    }
+    SUBCASE("range") {
+        const std::string point = "[[lights]]\nposition = [0, 0, 0]\ncolor = [1, 1, 1]\n";
+        CHECK_ERROR(with_camera(point + "range = 0\n"),
+                    "test.toml:7:9: expected 'lights[0].range' to be > 0 (leave it out for unlimited), got 0");
+        CHECK_ERROR(with_camera(point + "range = -2.5\n"), "test.toml:7:9: expected 'lights[0].range' to be > 0");
+        CHECK_ERROR(with_camera(point + "range = \"far\"\n"),
+                    "test.toml:7:9: expected a number > 0 or \"auto\" for 'lights[0].range', got \"far\"");
+        CHECK_ERROR(with_camera(point + "range = true\n"),
+                    "test.toml:7:9: expected a number > 0 or \"auto\" for 'lights[0].range', got boolean");
+        CHECK_ERROR(with_camera(point + "range = inf\n"), "test.toml:7:9: expected a finite number for 'lights[0].range'");
+    }
 }

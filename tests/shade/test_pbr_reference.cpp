@@ -156,3 +156,106 @@ TEST_CASE("shade_pbr: camera and light mirrored at 45° so H = N") {
     check_vec3(shade_pbr(world_pos, normal, material, cam_pos, twice),
                expected + (k_d * albedo / kPiD + specular) * radiance * c, tolerance);
 }
+
+TEST_CASE("shade_pbr: a directional light arrives along −direction, unattenuated") {
+    // The 45° mirror set-up above with L = −direction = (−1, 0, 1)/√2: H = N,
+    // N·V = N·L = H·V = c = 1/√2, and radiance = color wherever the surface is.
+    const glm::vec3 normal(0.0f, 0.0f, 1.0f);
+    Light sun;
+    sun.type = LightType::directional;
+    sun.direction = glm::normalize(glm::vec3(1.0f, 0.0f, -1.0f));
+    sun.color = glm::vec3(2.0f, 1.0f, 0.5f);
+    sun.position = glm::vec3(1e6f);  // ignored
+    const Material material{.albedo = glm::vec3(0.9f, 0.6f, 0.3f), .metallic = 0.3f, .roughness = 0.6f, .ao = 0.5f};
+
+    const glm::dvec3 albedo(material.albedo);
+    const double metallic = material.metallic, c = std::sqrt(0.5);
+    const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + albedo * metallic;
+    const double ndf = 1.0 / (kPiD * alpha2(material.roughness));
+    const double g = schlick_ggx(c, material.roughness) * schlick_ggx(c, material.roughness);
+    const glm::dvec3 f = f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0);
+    const glm::dvec3 k_d = (1.0 - f) * (1.0 - metallic);
+    const glm::dvec3 specular = ndf * g * f / (4.0 * c * c + 0.0001);
+    const glm::dvec3 expected =
+        0.03 * albedo * double(material.ao) + (k_d * albedo / kPiD + specular) * glm::dvec3(sun.color) * c;
+
+    const std::vector<Light> lights{sun};
+    const double tolerance = ggx_peak_tolerance(alpha2(material.roughness));
+    // The same result near the origin and far from it: no attenuation.
+    for (const glm::vec3 world_pos : {glm::vec3(0.0f), glm::vec3(100.0f, -50.0f, 25.0f)}) {
+        CAPTURE(world_pos.x);
+        const glm::vec3 cam_pos = world_pos + glm::vec3(4.0f, 0.0f, 4.0f);
+        check_vec3(shade_pbr(world_pos, normal, material, cam_pos, lights), expected, tolerance);
+    }
+    // Light from below the surface: ambient only.
+    Light from_below = sun;
+    from_below.direction = glm::vec3(0.0f, 0.0f, 1.0f);
+    const std::vector<Light> below{from_below};
+    check_vec3(shade_pbr(glm::vec3(0.0f), normal, material, glm::vec3(4.0f, 0.0f, 4.0f), below),
+               0.03 * albedo * double(material.ao));
+}
+
+TEST_CASE("shade_pbr: a spot light inside its inner cone, between the cones, outside the outer cone") {
+    // Light and camera straight above the surface (N = V = L = H = +Z), as in the
+    // point-light case; the spot's direction is tilted by φ from straight down,
+    // so θ (direction vs light-to-fragment) = φ and only the cone factor changes:
+    //   factor = clamp((cos φ − cos 40°) / (cos 20° − cos 40°), 0, 1).
+    const glm::vec3 world_pos(1.0f, -2.0f, 0.5f);
+    const glm::vec3 normal(0.0f, 0.0f, 1.0f);
+    const glm::vec3 cam_pos = world_pos + glm::vec3(0.0f, 0.0f, 5.0f);
+    const double distance = 2.0;
+    const Material material{.albedo = glm::vec3(0.8f, 0.4f, 0.2f), .metallic = 0.25f, .roughness = 0.5f, .ao = 1.0f};
+
+    const glm::dvec3 albedo(material.albedo);
+    const double metallic = material.metallic;
+    const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + albedo * metallic;
+    const double ndf = 1.0 / (kPiD * alpha2(material.roughness));
+    const glm::dvec3 k_d = (1.0 - f0) * (1.0 - metallic);
+    const glm::dvec3 specular = ndf * f0 / (4.0 + 0.0001);
+    const glm::dvec3 color(40.0, 20.0, 10.0);
+    const glm::dvec3 point_light_part = (k_d * albedo / kPiD + specular) * color / (distance * distance);
+    const glm::dvec3 ambient = 0.03 * albedo;
+
+    const double degrees = kPiD / 180.0;
+    const double cos_inner = std::cos(20.0 * degrees), cos_outer = std::cos(40.0 * degrees);
+    struct Case {
+        double phi_degrees;
+        double factor;
+    };
+    const Case cases[] = {
+        {0.0, 1.0},                                                                  // on the axis
+        {10.0, 1.0},                                                                 // inside the inner cone
+        {30.0, (std::cos(30.0 * degrees) - cos_outer) / (cos_inner - cos_outer)},  // between: 0.5758...
+        {39.0, (std::cos(39.0 * degrees) - cos_outer) / (cos_inner - cos_outer)},  // just inside the outer cone
+        {50.0, 0.0},                                                                 // outside the outer cone
+        {180.0, 0.0},                                                                // pointing away
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.phi_degrees);
+        Light spot;
+        spot.type = LightType::spot;
+        spot.position = world_pos + glm::vec3(0.0f, 0.0f, float(distance));
+        spot.color = glm::vec3(color);
+        const double phi = c.phi_degrees * degrees;
+        spot.direction = glm::vec3(float(std::sin(phi)), 0.0f, float(-std::cos(phi)));
+        spot.inner_cone_degrees = 20.0f;
+        spot.outer_cone_degrees = 40.0f;
+        const glm::dvec3 expected = ambient + point_light_part * c.factor;
+        const std::vector<Light> lights{spot};
+        // The factor's float rounding: cos φ to an ulp, divided by cos 20° − cos 40° ≈ 0.18.
+        check_vec3(shade_pbr(world_pos, normal, material, cam_pos, lights), expected,
+                   ggx_peak_tolerance(alpha2(material.roughness)) + 4e-6);
+    }
+    CHECK(cases[2].factor == doctest::Approx(0.5758).epsilon(1e-3));  // the hand value of the middle case
+
+    // A spot whose cones cover the fragment is the point light, term for term.
+    Light spot;
+    spot.type = LightType::spot;
+    spot.position = world_pos + glm::vec3(0.0f, 0.0f, float(distance));
+    spot.color = glm::vec3(color);
+    spot.direction = glm::vec3(0.0f, 0.0f, -1.0f);
+    Light point = spot;
+    point.type = LightType::point;
+    const std::vector<Light> spots{spot}, points{point};
+    CHECK(shade_pbr(world_pos, normal, material, cam_pos, spots) == shade_pbr(world_pos, normal, material, cam_pos, points));
+}

@@ -99,13 +99,27 @@ glm::vec3 unit_vector(std::mt19937& rng) {
 }
 
 // Fragments in a 16³ box, lights and camera in a 24³ box around it: light
-// distances run from 0.5 (closer ones are rejected) to about 35.
+// distances run from 0.5 (closer ones are rejected) to about 35. Lights are of
+// every type, in random order; spot cones are at least 5° wide.
 RandomScene random_scene(std::mt19937& rng, std::size_t count) {
     RandomScene scene;
     scene.cam_pos = uniform3(rng, -12.0f, 12.0f);
     const int light_count = std::uniform_int_distribution<int>(1, 8)(rng);
-    for (int j = 0; j < light_count; ++j)
-        scene.lights.push_back({uniform3(rng, -12.0f, 12.0f), uniform3(rng, 0.0f, 300.0f)});
+    for (int j = 0; j < light_count; ++j) {
+        Light light{uniform3(rng, -12.0f, 12.0f), uniform3(rng, 0.0f, 300.0f)};
+        const int type = std::uniform_int_distribution<int>(0, 2)(rng);
+        if (type == 1) {
+            light.type = LightType::directional;
+            light.color = uniform3(rng, 0.0f, 3.0f);  // radiance itself, not radiance·distance²
+            light.direction = unit_vector(rng);
+        } else if (type == 2) {
+            light.type = LightType::spot;
+            light.direction = unit_vector(rng);
+            light.inner_cone_degrees = uniform(rng, 0.0f, 60.0f);
+            light.outer_cone_degrees = uniform(rng, light.inner_cone_degrees + 5.0f, 90.0f);
+        }
+        scene.lights.push_back(light);
+    }
 
     Fragments& f = scene.fragments;
     f.count = count;
@@ -115,7 +129,9 @@ RandomScene random_scene(std::mt19937& rng, std::size_t count) {
             p = uniform3(rng, -8.0f, 8.0f);
         } while (glm::length(p - scene.cam_pos) < 0.5f ||
                  std::any_of(scene.lights.begin(), scene.lights.end(),
-                             [&](const Light& l) { return glm::length(p - l.position) < 0.5f; }));
+                             [&](const Light& l) {
+                                 return l.type != LightType::directional && glm::length(p - l.position) < 0.5f;
+                             }));
         // Unit normals scaled by 0.5..2: the shader must normalize.
         const glm::vec3 n = unit_vector(rng) * uniform(rng, 0.5f, 2.0f);
         f.world_x.push_back(p.x), f.world_y.push_back(p.y), f.world_z.push_back(p.z);
@@ -194,10 +210,25 @@ glm::dvec3 conditioning_allowance(const RandomScene& scene, std::size_t i) {
     glm::dvec3 allowance(0.0);
     for (const Light& light : scene.lights) {
         const glm::dvec3 to_light = glm::dvec3(light.position) - world_pos;
-        const glm::dvec3 l = glm::normalize(to_light);
+        const glm::dvec3 l =
+            light.type == LightType::directional ? -glm::dvec3(light.direction) : glm::normalize(to_light);
         const glm::dvec3 h = glm::normalize(v + l);
-        const glm::dvec3 radiance = glm::dvec3(light.color) / glm::dot(to_light, to_light);
+        glm::dvec3 radiance = glm::dvec3(light.color);
+        if (light.type != LightType::directional) radiance /= glm::dot(to_light, to_light);
         const DotProducts exact{glm::dot(n, v), glm::dot(n, l), glm::dot(n, h), glm::dot(h, v)};
+        if (light.type == LightType::spot) {
+            // The cone ramp amplifies cos θ's rounding (a dot product of unit
+            // vectors) by 1/(cos inner − cos outer).
+            const double cos_theta = glm::dot(glm::dvec3(light.direction), -l);
+            const double cos_inner = std::cos(glm::radians(double(light.inner_cone_degrees)));
+            const double cos_outer = std::cos(glm::radians(double(light.outer_cone_degrees)));
+            const auto factor = [&](double c) { return std::clamp((c - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0); };
+            const glm::dvec3 unit = light_contribution(exact, m, radiance);
+            const double spread = std::max(std::abs(factor(cos_theta + kDotProductError) - factor(cos_theta)),
+                                           std::abs(factor(cos_theta - kDotProductError) - factor(cos_theta)));
+            allowance += glm::abs(unit) * spread;
+            radiance *= factor(cos_theta);
+        }
         const glm::dvec3 base = light_contribution(exact, m, radiance);
         for (double DotProducts::*term : {&DotProducts::n_dot_v, &DotProducts::n_dot_l, &DotProducts::n_dot_h,
                                           &DotProducts::h_dot_v}) {
@@ -248,9 +279,14 @@ TEST_CASE("Isa::scalar is the reference shader, bit for bit") {
         const Radiance shown = display(Isa::scalar, out);
         const Fragments& f = scene.fragments;
         bool equal = true;
+        // ShadingLights groups the lights by type (points, spots, directionals), and the sum follows that order.
+        std::vector<Light> grouped;
+        for (LightType type : {LightType::point, LightType::spot, LightType::directional})
+            for (const Light& light : scene.lights)
+                if (light.type == type) grouped.push_back(light);
         for (std::size_t i = 0; i < count; ++i) {
             const glm::vec3 expected =
-                shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, scene.lights);
+                shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, grouped);
             const glm::vec3 expected_display = display_from_radiance(expected);
             for (int c = 0; c < 3; ++c)
                 equal = equal && same_bits(out.channel(c, i), expected[c]) &&
@@ -356,4 +392,87 @@ TEST_CASE("SIMD tonemap_gamma matches display_from_radiance") {
         CHECK(shown.r[0] == 0.0f);  // pow(0, 1/2.2) = 0, not NaN
         CHECK(shown.sentinels_intact());
     }
+}
+
+TEST_CASE("ShadingLights: type groups and per-frame spot constants") {
+    std::vector<Light> lights(5);
+    lights[0].type = LightType::directional, lights[0].color = glm::vec3(1.0f);
+    lights[1].type = LightType::point, lights[1].position = glm::vec3(1.0f);
+    lights[2].type = LightType::spot, lights[2].inner_cone_degrees = 30.0f, lights[2].outer_cone_degrees = 60.0f;
+    lights[3].type = LightType::point, lights[3].position = glm::vec3(3.0f);
+    lights[4].type = LightType::directional, lights[4].color = glm::vec3(4.0f);
+    ShadingLights soa;
+    soa.assign(glm::vec3(0.0f), lights);
+    REQUIRE(soa.count() == 5);
+    CHECK(soa.spot_begin == 2);
+    CHECK(soa.directional_begin == 3);
+    // Scene order within each group.
+    CHECK(soa.pos_x[0] == 1.0f);
+    CHECK(soa.pos_x[1] == 3.0f);
+    CHECK(soa.color_r[3] == 1.0f);
+    CHECK(soa.color_r[4] == 4.0f);
+    // cos 60° = 0.5, 1/(cos 30° − cos 60°) = 1/(0.8660 − 0.5) = 2.732
+    CHECK(soa.cos_outer[2] == doctest::Approx(0.5));
+    CHECK(soa.inv_cone_width[2] == doctest::Approx(2.7320508));
+    CHECK_FALSE(soa.any_range);
+}
+
+TEST_CASE("lights_reaching keeps the lights whose range sphere meets the bounds") {
+    // Bounds: the unit cube [0, 1]³.
+    const WorldBounds bounds{glm::vec3(0.0f), glm::vec3(1.0f)};
+    std::vector<Light> lights;
+    const auto add = [&](LightType type, glm::vec3 position, float range) {
+        Light light;
+        light.type = type;
+        light.position = position;
+        light.range = range;
+        light.color = glm::vec3(float(lights.size()));  // identifies the light
+        lights.push_back(light);
+    };
+    add(LightType::point, {3.0f, 0.5f, 0.5f}, 2.5f);        // 0: 2 from the face: kept
+    add(LightType::point, {3.0f, 0.5f, 0.5f}, 1.5f);        // 1: out of reach
+    add(LightType::point, {2.0f, 2.0f, 2.0f}, 1.8f);        // 2: corner at √3 = 1.73: kept
+    add(LightType::point, {2.0f, 2.0f, 2.0f}, 1.7f);        // 3: just short of the corner
+    add(LightType::point, {0.5f, 0.5f, 0.5f}, 0.1f);        // 4: inside the bounds: kept
+    add(LightType::point, {50.0f, 0.0f, 0.0f}, 0.0f);       // 5: no range, never culled
+    add(LightType::spot, {0.5f, -3.0f, 0.5f}, 2.0f);        // 6: out of reach
+    add(LightType::spot, {0.5f, -3.0f, 0.5f}, 3.5f);        // 7: kept
+    add(LightType::directional, {99.0f, 0.0f, 0.0f}, 0.0f);  // 8: never culled
+    ShadingLights all, subset;
+    all.assign(glm::vec3(0.0f), lights);
+    CHECK(all.any_range);
+    subset.reserve(all.count());
+    const ShadingLights& kept = lights_reaching(all, bounds, subset);
+    CHECK(&kept == &subset);
+    std::vector<float> ids(kept.color_r.begin(), kept.color_r.end());
+    CHECK(ids == std::vector<float>{0.0f, 2.0f, 4.0f, 5.0f, 7.0f, 8.0f});
+    CHECK(kept.spot_begin == 4);
+    CHECK(kept.directional_begin == 5);
+    REQUIRE(kept.records.size() == 6);
+    CHECK(kept.records[4].type == LightType::spot);
+    CHECK(kept.cam_pos == all.cam_pos);
+
+    // A culled-away group still gets its boundaries: nothing but the directional light.
+    const WorldBounds far_away{glm::vec3(-100.0f), glm::vec3(-99.0f)};
+    const ShadingLights& few = lights_reaching(all, far_away, subset);
+    CHECK(few.count() == 2);  // the point light without range and the directional light
+    CHECK(few.spot_begin == 1);
+    CHECK(few.directional_begin == 1);
+
+    // Without any range there is nothing to cull: the frame's lights themselves.
+    std::vector<Light> unranged(lights.begin(), lights.begin() + 1);
+    unranged[0].range = 0.0f;
+    ShadingLights plain;
+    plain.assign(glm::vec3(0.0f), unranged);
+    CHECK(&lights_reaching(plain, bounds, subset) == &plain);
+}
+
+TEST_CASE("fragment_bounds") {
+    const std::vector<float> x{1.0f, -2.0f, 3.0f}, y{0.5f, 0.25f, -4.0f}, z{7.0f, 8.0f, 9.0f};
+    FragmentInputs in;
+    in.count = 3;
+    in.world_x = x.data(), in.world_y = y.data(), in.world_z = z.data();
+    const WorldBounds b = fragment_bounds(in);
+    CHECK(b.min == glm::vec3(-2.0f, -4.0f, 7.0f));
+    CHECK(b.max == glm::vec3(3.0f, 0.5f, 9.0f));
 }
