@@ -40,7 +40,8 @@ struct RenderSettings {
     // Per-tile light culling: a light with a range (Light::range) is shaded only
     // in tiles whose visible points it reaches. Off, every light is shaded
     // everywhere, as the reference shader does. Scenes without ranges give the
-    // same image, bit for bit, either way.
+    // same image, bit for bit, either way; with ranges, the culled image depends
+    // on the tile size (not on the thread count).
     bool light_culling = true;
     // AOV planes to fill in RenderedImage::aov. None by default: a frame
     // without AOVs neither allocates nor writes them.
