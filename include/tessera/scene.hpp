@@ -167,7 +167,8 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// Reads and validates a TOML scene file; throws SceneError.
+// Reads and validates a TOML scene file, or a .gltf/.glb file as a whole scene
+// (src/scene/gltf_import.hpp); throws SceneError.
 Scene load_scene_file(const std::filesystem::path& path);
 // The same from text in memory; source_name stands for the file in messages.
 Scene parse_scene(std::string_view toml_text, std::string_view source_name);

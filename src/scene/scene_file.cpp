@@ -58,11 +58,23 @@
 //   rotate = [0, 45, 0]             # Euler angles in degrees, applied X first, then Y, then Z
 //   scale = [1, 1, 1]               # a number (uniform) or a 3-array, every component non-zero
 //
-// An object's model matrix is translate · Rz · Ry · Rx · scale. Integers are
+//   [[models]]                      # glTF files placed in the scene, any number
+//   file = "helmet/model.glb"       # required: a .gltf or .glb file, relative to this file's folder
+//   translate = [0, 0, 0]           # placement, the same keys and rules as [[objects]]:
+//   rotate = [0, 0, 0]              # each node's world transform is preceded by
+//   scale = 1                       # translate · Rz · Ry · Rx · scale
+//   lights = true                   # whether the file's KHR_lights_punctual lights are added; default true
+//
+// A model brings its meshes, materials and textures (gltf_import.hpp says what
+// is supported); its cameras are not used ([camera] is). An object's model
+// matrix is translate · Rz · Ry · Rx · scale. Integers are
 // accepted wherever a number is expected; NaN and infinities are rejected.
 // Each built-in mesh is created once and shared by all objects that use it;
 // Scene::meshes and Scene::materials hold only what objects use, in order of
 // first use (each inline material is its own entry).
+//
+// load_scene_file also reads a .gltf or .glb file on its own as a whole scene
+// (make_gltf_scene: its camera and lights, or ones framing the model).
 //
 // Errors throw SceneError reading "file:line:column: message", the position
 // being that of the offending value (or of its table when a key is missing);
@@ -86,6 +98,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
 
+#include "scene/gltf_import.hpp"
 #include "tessera/scene.hpp"
 #include "texture/texture.hpp"
 
@@ -140,10 +153,11 @@ constexpr Bounds kNonNegative{0.0, std::numeric_limits<double>::infinity(), ">= 
 // name and the offending node's position.
 class SceneReader {
 public:
-    explicit SceneReader(std::string source) : source_(std::move(source)) {}
+    explicit SceneReader(std::string source)
+        : source_(std::move(source)), base_dir_(std::filesystem::path(source_).parent_path()) {}
 
     Scene read(const toml::table& root) {
-        check_keys(root, "", {"output", "camera", "lights", "materials", "objects"});
+        check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models"});
         Scene scene;
         scene.source = source_;
         if (const toml::node* output = root.get("output")) {
@@ -155,7 +169,9 @@ public:
         if (const toml::node* lights = root.get("lights")) read_lights(*lights, scene);
         if (const toml::node* materials = root.get("materials")) read_named_materials(*materials);
         if (const toml::node* objects = root.get("objects")) read_objects(*objects, scene);
+        // The file's own textures first: models append theirs after them.
         scene.textures = std::move(textures_);
+        if (const toml::node* models = root.get("models")) read_models(*models, scene);
         return scene;
     }
 
@@ -608,26 +624,75 @@ private:
             object.mesh = mesh_index(require(table, "mesh", name), child(name, "mesh"), scene);
             object.material = material_index(table.get("material"), child(name, "material"), scene);
 
-            glm::vec3 translate{0.0f};
-            glm::vec3 rotate_degrees{0.0f};
-            glm::vec3 scale{1.0f};
-            if (const toml::node* n = table.get("translate")) translate = read_vec3(*n, child(name, "translate"));
-            if (const toml::node* n = table.get("rotate")) rotate_degrees = read_vec3(*n, child(name, "rotate"));
-            if (const toml::node* n = table.get("scale")) scale = read_scale(*n, child(name, "scale"));
-
-            // translate · Rz · Ry · Rx · scale: X rotation is applied first. Zero
-            // angles are skipped so unrotated objects get exactly the reference's matrix.
-            glm::mat4 model = glm::translate(glm::mat4(1.0f), translate);
-            if (rotate_degrees.z != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.z), {0, 0, 1});
-            if (rotate_degrees.y != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.y), {0, 1, 0});
-            if (rotate_degrees.x != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.x), {1, 0, 0});
-            if (scale != glm::vec3(1.0f)) model = glm::scale(model, scale);
-            object.model = model;
+            object.model = read_placement(table, name);
             scene.objects.push_back(object);
         }
     }
 
+    // translate · Rz · Ry · Rx · scale: X rotation is applied first. Zero
+    // angles are skipped so unrotated objects get exactly the reference's matrix.
+    glm::mat4 read_placement(const toml::table& table, const std::string& name) const {
+        glm::vec3 translate{0.0f};
+        glm::vec3 rotate_degrees{0.0f};
+        glm::vec3 scale{1.0f};
+        if (const toml::node* n = table.get("translate")) translate = read_vec3(*n, child(name, "translate"));
+        if (const toml::node* n = table.get("rotate")) rotate_degrees = read_vec3(*n, child(name, "rotate"));
+        if (const toml::node* n = table.get("scale")) scale = read_scale(*n, child(name, "scale"));
+        glm::mat4 model = glm::translate(glm::mat4(1.0f), translate);
+        if (rotate_degrees.z != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.z), {0, 0, 1});
+        if (rotate_degrees.y != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.y), {0, 1, 0});
+        if (rotate_degrees.x != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.x), {1, 0, 0});
+        if (scale != glm::vec3(1.0f)) model = glm::scale(model, scale);
+        return model;
+    }
+
+    static bool finite_matrix(const glm::mat4& m) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(m[c][r])) return false;
+        return true;
+    }
+
+    void read_models(const toml::node& node, Scene& scene) const {
+        const toml::array& models = array_of_tables(node, "models");
+        for (std::size_t i = 0; i < models.size(); ++i) {
+            const std::string name = "models[" + std::to_string(i) + "]";
+            const toml::table& table = table_of(*models.get(i), name);
+            check_keys(table, name, {"file", "translate", "rotate", "scale", "lights"});
+            const toml::node& file_node = require(table, "file", name);
+            const std::filesystem::path file = base_dir_ / read_string(file_node, child(name, "file"));
+            if (!is_gltf_path(file)) {
+                fail_at(file_node.source(), "expected a .gltf or .glb file for '" + child(name, "file") + "', got '" +
+                                                file.string() + "'");
+            }
+            bool with_lights = true;
+            if (const toml::node* n = table.get("lights")) {
+                const auto* flag = n->as_boolean();
+                if (flag == nullptr) fail_type(*n, "a boolean", child(name, "lights"));
+                with_lights = flag->get();
+            }
+            const glm::mat4 placement = read_placement(table, name);
+            GltfContent content;
+            try {
+                content = import_gltf_file(file);
+            } catch (const SceneError& error) {
+                fail_at(file_node.source(), "in '" + child(name, "file") + "': " + error.what());
+            }
+            const std::size_t first_object = scene.objects.size(), first_light = scene.lights.size();
+            append_gltf_content(scene, content, placement, with_lights);
+            // A finite placement of a finite node can still overflow (1e30 · 1e30).
+            bool finite = true;
+            for (std::size_t o = first_object; o < scene.objects.size(); ++o) finite = finite && finite_matrix(scene.objects[o].model);
+            for (std::size_t l = first_light; l < scene.lights.size(); ++l) {
+                const glm::vec3 p = scene.lights[l].position;
+                finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+            }
+            if (!finite) fail_at(table.source(), "placing '" + file.string() + "' by '" + name + "' gives a transform that is not finite");
+        }
+    }
+
     std::string source_;
+    std::filesystem::path base_dir_;  // the scene file's folder: [[models]] files are relative to it
     std::map<std::string, Material> named_materials_;
     std::map<std::string, std::uint32_t> used_materials_;  // name -> index in Scene::materials
     std::map<std::string, std::uint32_t> used_meshes_;     // name -> index in Scene::meshes
@@ -658,6 +723,7 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
 
 Scene load_scene_file(const std::filesystem::path& path) {
     const std::string name = path.string();
+    if (is_gltf_path(path)) return make_gltf_scene(import_gltf_file(path), name);
     std::error_code ignored;
     std::ifstream file(path, std::ios::binary);
     if (!file || std::filesystem::is_directory(path, ignored)) {

@@ -1,0 +1,594 @@
+// glTF files to GltfContent (gltf_import.hpp): tinygltf parses, this file walks
+// the node tree and converts materials, images, cameras and lights; primitives
+// are gltf_geometry.cpp's.
+#include "scene/gltf_import.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <system_error>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
+#include <tiny_gltf.h>
+
+#include "scene/gltf_geometry.hpp"
+#include "scene/scene_validation.hpp"
+#include "texture/texture.hpp"
+
+namespace tessera {
+namespace {
+
+using gltf::fail;
+namespace fs = std::filesystem;
+
+constexpr float kRadiansToDegrees = 57.29577951308232f;
+
+std::string one_line(std::string message) {
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    for (std::size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at))
+        message.replace(at, 1, "; ");
+    return message.empty() ? std::string("unknown error") : message;
+}
+
+std::string quoted(const std::string& text) {
+    std::string result(1, '\'');
+    result += text;
+    result += '\'';
+    return result;
+}
+
+std::string indexed(const char* array, std::size_t index, const std::string& name) {
+    std::string label = std::string(array) + "[" + std::to_string(index) + "]";
+    if (!name.empty()) label += " " + quoted(name);
+    return label;
+}
+
+// ---- Reading the file with tinygltf -------------------------------------------------------------
+
+// What tinygltf's callbacks need: the model being filled (for image buffer views)
+// and whether files may be read.
+struct LoadContext {
+    const tinygltf::Model* model = nullptr;
+    bool read_external_files = true;
+};
+
+bool file_exists(const std::string& path, void* user) {
+    if (!static_cast<LoadContext*>(user)->read_external_files) return false;
+    std::error_code error;
+    return fs::is_regular_file(path, error);  // not a folder, fifo or device: those could block or never end
+}
+
+std::string expand_nothing(const std::string& path, void*) { return path; }
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    if (!file_exists(path, user)) {
+        if (err) *err += "not a readable file";
+        return false;
+    }
+    std::ifstream file(path, std::ios::binary);
+    out->assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    if (file.bad() || !file.is_open()) {
+        if (err) *err += "cannot read";
+        return false;
+    }
+    return true;
+}
+
+bool write_nothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// Images are kept encoded (as_is) and decoded later, only those materials use,
+// each in the colour space its use needs. An image in a buffer view is checked
+// against the buffer first: tinygltf hands over a pointer without checking.
+bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                        const unsigned char* bytes, int size, void* user) {
+    const auto* context = static_cast<const LoadContext*>(user);
+    if (image->bufferView >= 0) {
+        const tinygltf::Model& model = *context->model;
+        const auto view_index = std::size_t(image->bufferView);
+        const tinygltf::BufferView& view = model.bufferViews.at(view_index);  // tinygltf checked the index
+        const tinygltf::Buffer& buffer = model.buffers.at(std::size_t(view.buffer));
+        std::size_t end = 0;
+        if (__builtin_add_overflow(view.byteOffset, view.byteLength, &end) || end > buffer.data.size() ||
+            view.byteLength > std::size_t(std::numeric_limits<int>::max())) {
+            if (err)
+                *err += "images[" + std::to_string(index) + "]: bufferView " + std::to_string(view_index) +
+                        " runs past the end of its buffer";
+            return false;
+        }
+    }
+    if (size < 0 || (size > 0 && bytes == nullptr)) {
+        if (err) *err += "images[" + std::to_string(index) + "]: no data";
+        return false;
+    }
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::string& source, const fs::path& base_dir,
+                            const GltfReadOptions& options) {
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        fail(source, "file of " + std::to_string(bytes.size()) + " bytes is larger than glTF's 4 GB limit");
+    tinygltf::Model model;
+    LoadContext context{&model, options.read_external_files};
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keep_encoded_image, &context);
+    loader.SetFsCallbacks({file_exists, expand_nothing, read_whole_file, write_nothing, &context});
+    std::string err, warn;
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    bool loaded = false;
+    try {
+        loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
+                                                      base_dir.string())
+                        : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                     unsigned(bytes.size()), base_dir.string());
+    } catch (const std::exception& e) {
+        err = e.what();
+    }
+    if (!loaded) {
+        std::string message = (binary ? "invalid glTF binary (.glb): " : "invalid glTF: ") + one_line(err);
+        if (err.find("File not found") != std::string::npos || err.find("File read error") != std::string::npos)
+            message += options.read_external_files ? " (looked in " + quoted(base_dir.string()) + ")"
+                                                   : " (external files are not read here)";
+        fail(source, message);
+    }
+    return model;
+}
+
+// ---- Converting the model ----------------------------------------------------------------------
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+class GltfReader {
+public:
+    GltfReader(const tinygltf::Model& model, std::string source, fs::path base_dir, const GltfReadOptions& options)
+        : model_(model), source_(std::move(source)), base_dir_(std::move(base_dir)), options_(options) {}
+
+    GltfContent read() {
+        walk_nodes();
+        decode_textures();
+        if (content_.camera && content_.camera->camera.far_plane == std::numeric_limits<float>::infinity())
+            content_.camera->camera.far_plane = far_plane_covering(content_.camera->camera, content_.bounds);
+        return std::move(content_);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const { gltf::fail(source_, message); }
+
+    // ---- Nodes
+
+    std::vector<int> root_nodes() const {
+        if (model_.defaultScene >= 0 || !model_.scenes.empty()) {
+            const int scene = std::max(model_.defaultScene, 0);
+            if (std::size_t(scene) >= model_.scenes.size())
+                fail("the default scene is scene " + std::to_string(scene) + " but the file has " +
+                     std::to_string(model_.scenes.size()) + " scenes");
+            return model_.scenes[std::size_t(scene)].nodes;
+        }
+        // No scenes: every node that is nobody's child.
+        std::vector<bool> is_child(model_.nodes.size(), false);
+        for (const tinygltf::Node& node : model_.nodes)
+            for (const int child : node.children)
+                if (child >= 0 && std::size_t(child) < is_child.size()) is_child[std::size_t(child)] = true;
+        std::vector<int> roots;
+        for (std::size_t n = 0; n < model_.nodes.size(); ++n)
+            if (!is_child[n]) roots.push_back(int(n));
+        return roots;
+    }
+
+    glm::mat4 local_transform(const tinygltf::Node& node, const std::string& label) const {
+        if (!node.matrix.empty()) {
+            if (node.matrix.size() != 16) fail(label + " has a matrix of " + std::to_string(node.matrix.size()) + " numbers, expected 16");
+            glm::dmat4 matrix;
+            std::copy(node.matrix.begin(), node.matrix.end(), glm::value_ptr(matrix));  // both column-major
+            return glm::mat4(matrix);
+        }
+        glm::mat4 transform(1.0f);
+        if (!node.translation.empty()) {
+            if (node.translation.size() != 3) fail(label + " has a translation of " + std::to_string(node.translation.size()) + " numbers, expected 3");
+            transform = glm::translate(transform, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+        }
+        if (!node.rotation.empty()) {
+            if (node.rotation.size() != 4) fail(label + " has a rotation of " + std::to_string(node.rotation.size()) + " numbers, expected 4 (a quaternion)");
+            // glTF stores x, y, z, w; glm's constructor takes w first.
+            const glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+            const float length = glm::length(q);
+            if (!(length > 0.0f) || !std::isfinite(length)) fail(label + " has a rotation quaternion of length 0 or not finite");
+            transform = transform * glm::mat4_cast(q / length);
+        }
+        if (!node.scale.empty()) {
+            if (node.scale.size() != 3) fail(label + " has a scale of " + std::to_string(node.scale.size()) + " numbers, expected 3");
+            transform = glm::scale(transform, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+        }
+        return transform;
+    }
+
+    // Depth first, in node order; a node reached twice means the graph is not a
+    // forest (a cycle, or a shared child), which glTF forbids.
+    void walk_nodes() {
+        std::vector<bool> visited(model_.nodes.size(), false);
+        struct Pending {
+            int node;
+            glm::mat4 parent_world;
+        };
+        std::vector<Pending> stack;
+        const std::vector<int> roots = root_nodes();
+        for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, glm::mat4(1.0f)});
+        while (!stack.empty()) {
+            const Pending pending = stack.back();
+            stack.pop_back();
+            if (pending.node < 0 || std::size_t(pending.node) >= model_.nodes.size())
+                fail("a scene or node refers to node " + std::to_string(pending.node) + " but the file has " +
+                     std::to_string(model_.nodes.size()) + " nodes");
+            const auto index = std::size_t(pending.node);
+            const tinygltf::Node& node = model_.nodes[index];
+            const std::string label = indexed("nodes", index, node.name);
+            if (visited[index]) fail(label + " is reached twice from the scene; glTF nodes form a tree (no cycles or shared children)");
+            visited[index] = true;
+            const glm::mat4 world = pending.parent_world * local_transform(node, label);
+            if (!finite(world)) fail(label + " has a world transform that is not finite");
+            if (node.mesh >= 0) place_mesh(node.mesh, world, label);
+            if (node.camera >= 0) read_camera(node.camera, world, label);
+            read_node_light(node, world, label);
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+                stack.push_back({*child, world});
+        }
+    }
+
+    // ---- Meshes
+
+    struct PlacedPrimitive {
+        std::uint32_t mesh;
+        std::uint32_t material;
+    };
+
+    void place_mesh(int mesh_index, const glm::mat4& world, const std::string& node_label) {
+        if (std::size_t(mesh_index) >= model_.meshes.size())
+            fail(node_label + " uses mesh " + std::to_string(mesh_index) + " but the file has " +
+                 std::to_string(model_.meshes.size()) + " meshes");
+        auto converted = converted_meshes_.find(mesh_index);
+        if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
+        for (const PlacedPrimitive& primitive : converted->second) {
+            content_.objects.push_back(Object{primitive.mesh, primitive.material, world});
+            content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world));
+        }
+    }
+
+    std::vector<PlacedPrimitive> convert_mesh(int mesh_index) {
+        const tinygltf::Mesh& mesh = model_.meshes[std::size_t(mesh_index)];
+        std::vector<PlacedPrimitive> placed;
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string label = indexed("meshes", std::size_t(mesh_index), mesh.name) + " primitives[" + std::to_string(p) + "]";
+            gltf::PrimitiveMesh converted = gltf::read_primitive(model_, mesh.primitives[p], source_, label);
+            if (!converted.is_surface) {
+                ++content_.skipped_primitives;
+                continue;
+            }
+            Bounds bounds;
+            for (const glm::vec3& position : converted.mesh.positions) bounds.add(position);
+            mesh_bounds_.push_back(bounds);
+            content_.meshes.push_back(std::move(converted.mesh));
+            placed.push_back({std::uint32_t(content_.meshes.size() - 1), material_index(mesh.primitives[p].material, label)});
+        }
+        return placed;
+    }
+
+    // ---- Materials and textures
+
+    std::uint32_t material_index(int gltf_material, const std::string& primitive_label) {
+        if (gltf_material >= 0 && std::size_t(gltf_material) >= model_.materials.size())
+            fail(primitive_label + " uses material " + std::to_string(gltf_material) + " but the file has " +
+                 std::to_string(model_.materials.size()) + " materials");
+        const auto known = converted_materials_.find(gltf_material);
+        if (known != converted_materials_.end()) return known->second;
+        content_.materials.push_back(gltf_material < 0 ? default_material() : read_material(std::size_t(gltf_material)));
+        const auto index = std::uint32_t(content_.materials.size() - 1);
+        converted_materials_.emplace(gltf_material, index);
+        return index;
+    }
+
+    // glTF's default material (spec §3.9.6): white, fully metallic and rough.
+    static Material default_material() {
+        Material material;
+        material.albedo = glm::vec3(1.0f);
+        material.metallic = 1.0f;
+        material.roughness = 1.0f;
+        return material;
+    }
+
+    float unit_factor(double value, const std::string& what) const {
+        if (!(value >= 0.0 && value <= 1.0)) fail(what + " is " + std::to_string(value) + ", expected a number in [0, 1]");
+        return float(value);
+    }
+
+    glm::vec3 color_factor(const std::vector<double>& values, std::size_t expected_size, const std::string& what,
+                           bool unit_range) const {
+        if (values.size() != expected_size)
+            fail(what + " has " + std::to_string(values.size()) + " numbers, expected " + std::to_string(expected_size));
+        glm::vec3 color;
+        for (int c = 0; c < 3; ++c) {
+            const double v = values[std::size_t(c)];
+            if (!(v >= 0.0 && std::isfinite(float(v))) || (unit_range && v > 1.0))
+                fail(what + " has " + std::to_string(v) + ", expected numbers in " + (unit_range ? "[0, 1]" : "[0, ∞)"));
+            color[c] = float(v);
+        }
+        return color;
+    }
+
+    Material read_material(std::size_t index) {
+        const tinygltf::Material& m = model_.materials[index];
+        const std::string label = indexed("materials", index, m.name);
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        Material material;
+        material.albedo = color_factor(pbr.baseColorFactor, 4, label + " baseColorFactor", true);
+        material.metallic = unit_factor(pbr.metallicFactor, label + " metallicFactor");
+        material.roughness = unit_factor(pbr.roughnessFactor, label + " roughnessFactor");
+        material.emissive = color_factor(m.emissiveFactor, 3, label + " emissiveFactor", true);
+        if (const auto strength = m.extensions.find("KHR_materials_emissive_strength"); strength != m.extensions.end()) {
+            const tinygltf::Value& value = strength->second.Get("emissiveStrength");
+            if (value.IsNumber()) {
+                const double s = value.GetNumberAsDouble();
+                if (!(s >= 0.0 && std::isfinite(float(s) * std::max({material.emissive.x, material.emissive.y, material.emissive.z}))))
+                    fail(label + " KHR_materials_emissive_strength is " + std::to_string(s) + ", expected a finite number >= 0");
+                material.emissive *= float(s);
+            }
+        }
+        using texture::ColorSpace;
+        material.albedo_map = texture_slot(pbr.baseColorTexture.index, ColorSpace::srgb, label + " baseColorTexture");
+        material.metallic_map = texture_slot(pbr.metallicRoughnessTexture.index, ColorSpace::linear,
+                                             label + " metallicRoughnessTexture");
+        material.roughness_map = material.metallic_map;  // one texture: metallic in B, roughness in G
+        material.metallic_channel = 2;
+        material.roughness_channel = 1;
+        material.ao_map = texture_slot(m.occlusionTexture.index, ColorSpace::linear, label + " occlusionTexture");
+        material.ao_strength = float(m.occlusionTexture.strength);
+        material.normal_map = texture_slot(m.normalTexture.index, ColorSpace::linear, label + " normalTexture");
+        material.normal_scale = float(m.normalTexture.scale);
+        if (!std::isfinite(material.ao_strength) || !std::isfinite(material.normal_scale))
+            fail(label + ": occlusion strength and normal scale must be finite");
+        material.emissive_map = texture_slot(m.emissiveTexture.index, ColorSpace::srgb, label + " emissiveTexture");
+        return material;
+    }
+
+    TextureSlot texture_slot(int texture_index, texture::ColorSpace color_space, const std::string& what) {
+        TextureSlot slot;
+        if (texture_index < 0) return slot;
+        if (std::size_t(texture_index) >= model_.textures.size())
+            fail(what + " uses texture " + std::to_string(texture_index) + " but the file has " +
+                 std::to_string(model_.textures.size()) + " textures");
+        const tinygltf::Texture& gltf_texture = model_.textures[std::size_t(texture_index)];
+        const std::string texture_label = "textures[" + std::to_string(texture_index) + "]";
+        if (gltf_texture.source < 0 || std::size_t(gltf_texture.source) >= model_.images.size())
+            fail(texture_label + " (" + what + ") has image source " + std::to_string(gltf_texture.source) +
+                 " but the file has " + std::to_string(model_.images.size()) +
+                 " images (images given only by extensions, such as KTX2 or WebP, are not supported)");
+        if (gltf_texture.sampler >= 0) {
+            if (std::size_t(gltf_texture.sampler) >= model_.samplers.size())
+                fail(texture_label + " uses sampler " + std::to_string(gltf_texture.sampler) + " but the file has " +
+                     std::to_string(model_.samplers.size()) + " samplers");
+            // wrapT is ignored and MIRRORED_REPEAT repeats: Texture has one wrap mode, without mirroring.
+            slot.wrap = model_.samplers[std::size_t(gltf_texture.sampler)].wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+                            ? TextureWrap::clamp_to_edge
+                            : TextureWrap::repeat;
+        }
+        const std::pair key{gltf_texture.source, color_space};
+        const auto known = texture_indices_.find(key);
+        if (known != texture_indices_.end()) {
+            slot.texture = known->second;
+        } else {
+            slot.texture = std::int32_t(pending_images_.size());
+            texture_indices_.emplace(key, slot.texture);
+            pending_images_.push_back(key);
+        }
+        return slot;
+    }
+
+    // Decoded in parallel: a textured model's images are most of its load time.
+    void decode_textures() {
+        content_.textures.resize(pending_images_.size());
+        tbb::parallel_for(std::size_t(0), pending_images_.size(), [this](std::size_t i) {
+            const auto [image, color_space] = pending_images_[i];
+            content_.textures[i] = std::make_shared<const texture::Texture>(decode_image(std::size_t(image), color_space));
+        });
+    }
+
+    texture::Texture decode_image(std::size_t index, texture::ColorSpace color_space) const {
+        const tinygltf::Image& image = model_.images[index];
+        const std::string label = indexed("images", index, image.name);
+        if (image.image.empty()) {
+            if (!image.uri.empty()) {
+                if (!options_.read_external_files) fail(label + ": external image " + quoted(image.uri) + " is not read here");
+                fail(label + ": cannot read image file " + quoted((base_dir_ / image.uri).string()));
+            }
+            fail(label + " has no data");
+        }
+        // OpenImageIO picks its reader by file extension: name one from the bytes' signature.
+        const std::vector<unsigned char>& bytes = image.image;
+        std::string format = "image.png";
+        if (bytes.size() >= 2 && bytes[0] == 0xFF && bytes[1] == 0xD8) format = "image.jpg";
+        else if (!(bytes.size() >= 4 && std::memcmp(bytes.data(), "\x89PNG", 4) == 0))
+            fail(label + " is neither PNG nor JPEG (mimeType " + quoted(image.mimeType) + "); glTF images are PNG or JPEG");
+        OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes.data()), bytes.size());
+        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, false, nullptr, &memory);
+        OIIO::ImageSpec spec;
+        if (!input || !input->set_ioproxy(&memory) || !input->open(format, spec))
+            fail(label + ": cannot decode image: " + one_line(input ? input->geterror() : OIIO::geterror()));
+        if (spec.width <= 0 || spec.height <= 0 || spec.width > texture::kMaxTextureSize ||
+            spec.height > texture::kMaxTextureSize || spec.nchannels < 1)
+            fail(label + ": image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+                 std::to_string(spec.nchannels) + " is outside 1.." + std::to_string(texture::kMaxTextureSize) + " per side");
+        std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+        if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+            fail(label + ": cannot decode image: " + one_line(input->geterror()));
+        try {
+            return texture::Texture::from_pixels(spec.width, spec.height, spec.nchannels, pixels.data(), color_space);
+        } catch (const texture::TextureError& e) {
+            fail(label + ": " + e.what());
+        }
+    }
+
+    // ---- Cameras and lights
+
+    void read_camera(int camera_index, const glm::mat4& world, const std::string& node_label) {
+        if (std::size_t(camera_index) >= model_.cameras.size())
+            fail(node_label + " uses camera " + std::to_string(camera_index) + " but the file has " +
+                 std::to_string(model_.cameras.size()) + " cameras");
+        const tinygltf::Camera& gltf_camera = model_.cameras[std::size_t(camera_index)];
+        if (content_.camera || gltf_camera.type != "perspective") return;  // the first perspective one
+        const std::string label = indexed("cameras", std::size_t(camera_index), gltf_camera.name);
+        const tinygltf::PerspectiveCamera& p = gltf_camera.perspective;
+        if (!(p.yfov > 0.0 && p.yfov < M_PI)) fail(label + " yfov is " + std::to_string(p.yfov) + ", expected radians in (0, π)");
+        if (!(p.znear > 0.0 && std::isfinite(float(p.znear)))) fail(label + " znear is " + std::to_string(p.znear) + ", expected > 0");
+        if (p.zfar != 0.0 && !(p.zfar > p.znear && std::isfinite(float(p.zfar))))
+            fail(label + " zfar is " + std::to_string(p.zfar) + ", expected > znear (" + std::to_string(p.znear) + ")");
+        if (!(p.aspectRatio >= 0.0 && std::isfinite(float(p.aspectRatio))))
+            fail(label + " aspectRatio is " + std::to_string(p.aspectRatio) + ", expected > 0");
+        GltfCamera camera;
+        camera.camera.position = glm::vec3(world[3]);
+        const glm::vec3 forward = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+        const glm::vec3 up = glm::mat3(world) * glm::vec3(0.0f, 1.0f, 0.0f);
+        if (!(glm::length(forward) > 0.0f) || !(glm::length(glm::cross(forward, up)) > 0.0f))
+            fail(node_label + " places " + label + " with a degenerate transform (no view direction or up)");
+        camera.camera.target = camera.camera.position + glm::normalize(forward);
+        camera.camera.up = glm::normalize(up);
+        camera.camera.fov_y_degrees = float(p.yfov) * kRadiansToDegrees;
+        camera.camera.near_plane = float(p.znear);
+        camera.camera.far_plane = p.zfar == 0.0 ? std::numeric_limits<float>::infinity() : float(p.zfar);
+        camera.aspect_ratio = float(p.aspectRatio);
+        content_.camera = camera;
+    }
+
+    void read_node_light(const tinygltf::Node& node, const glm::mat4& world, const std::string& node_label) {
+        const auto extension = node.extensions.find("KHR_lights_punctual");
+        if (extension == node.extensions.end()) return;
+        const tinygltf::Value& light_value = extension->second.Get("light");
+        if (!light_value.IsInt()) fail(node_label + " KHR_lights_punctual has no integer 'light'");
+        const int index = light_value.GetNumberAsInt();
+        if (index < 0 || std::size_t(index) >= model_.lights.size())
+            fail(node_label + " uses light " + std::to_string(index) + " but the file has " +
+                 std::to_string(model_.lights.size()) + " KHR_lights_punctual lights");
+        const tinygltf::Light& gltf_light = model_.lights[std::size_t(index)];
+        const std::string label = "KHR_lights_punctual " + indexed("lights", std::size_t(index), gltf_light.name);
+        Light light;
+        if (gltf_light.type == "point") light.type = LightType::point;
+        else if (gltf_light.type == "spot") light.type = LightType::spot;
+        else if (gltf_light.type == "directional") light.type = LightType::directional;
+        else fail(label + " has type " + quoted(gltf_light.type) + ", expected point, spot or directional");
+        const glm::vec3 color = gltf_light.color.empty() ? glm::vec3(1.0f) : color_factor(gltf_light.color, 3, label + " color", false);
+        if (!(gltf_light.intensity >= 0.0 && std::isfinite(float(gltf_light.intensity))))
+            fail(label + " intensity is " + std::to_string(gltf_light.intensity) + ", expected a finite number >= 0");
+        light.color = color * float(gltf_light.intensity);
+        if (!std::isfinite(light.color.x + light.color.y + light.color.z)) fail(label + " color × intensity is not finite");
+        light.position = glm::vec3(world[3]);
+        if (light.type != LightType::point) {
+            const glm::vec3 direction = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+            if (!(glm::length(direction) > 0.0f)) fail(node_label + " places " + label + " with a degenerate transform (no direction)");
+            light.direction = glm::normalize(direction);
+        }
+        if (light.type == LightType::spot) {
+            const double inner = gltf_light.spot.innerConeAngle, outer = gltf_light.spot.outerConeAngle;
+            if (!(inner >= 0.0 && inner < outer && outer <= M_PI / 2 + 1e-6))
+                fail(label + " cone angles are inner " + std::to_string(inner) + ", outer " + std::to_string(outer) +
+                     "; expected 0 <= inner < outer <= π/2 radians");
+            light.inner_cone_degrees = float(inner) * kRadiansToDegrees;
+            light.outer_cone_degrees = std::min(float(outer) * kRadiansToDegrees, 90.0f);
+        }
+        if (!(gltf_light.range >= 0.0 && std::isfinite(float(gltf_light.range))))
+            fail(label + " range is " + std::to_string(gltf_light.range) + ", expected a finite number > 0");
+        light.range = light.type == LightType::directional ? 0.0f : float(gltf_light.range);
+        content_.lights.push_back(light);
+    }
+
+    const tinygltf::Model& model_;
+    std::string source_;
+    fs::path base_dir_;
+    GltfReadOptions options_;
+    GltfContent content_;
+    std::map<int, std::vector<PlacedPrimitive>> converted_meshes_;   // glTF mesh -> its primitives' meshes
+    std::vector<Bounds> mesh_bounds_;                                // per content_.meshes entry, object space
+    std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
+    std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
+    std::vector<std::pair<int, texture::ColorSpace>> pending_images_;  // what content_.textures[i] decodes
+};
+
+}  // namespace
+
+bool is_gltf_path(const fs::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return extension == ".gltf" || extension == ".glb";
+}
+
+GltfContent import_gltf(std::span<const std::uint8_t> bytes, const std::string& source, const fs::path& base_dir,
+                        const GltfReadOptions& options) {
+    const tinygltf::Model model = parse_model(bytes, source, base_dir, options);
+    return GltfReader(model, source, base_dir, options).read();
+}
+
+GltfContent import_gltf_file(const fs::path& path) {
+    const std::string source = path.string();
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) fail(source, "cannot open glTF file");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) fail(source, "cannot open glTF file");
+    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    if (file.bad()) fail(source, "cannot read glTF file");
+    return import_gltf(bytes, source, path.parent_path());
+}
+
+void append_gltf_content(Scene& scene, const GltfContent& content, const glm::mat4& placement, bool with_lights) {
+    const auto first_mesh = std::uint32_t(scene.meshes.size());
+    const auto first_material = std::uint32_t(scene.materials.size());
+    const auto first_texture = std::int32_t(scene.textures.size());
+    scene.meshes.insert(scene.meshes.end(), content.meshes.begin(), content.meshes.end());
+    scene.textures.insert(scene.textures.end(), content.textures.begin(), content.textures.end());
+    for (Material material : content.materials) {
+        for (TextureSlot* slot : {&material.albedo_map, &material.metallic_map, &material.roughness_map, &material.ao_map,
+                                  &material.normal_map, &material.emissive_map})
+            if (slot->present()) slot->texture += first_texture;
+        scene.materials.push_back(material);
+    }
+    for (const Object& object : content.objects)
+        scene.objects.push_back(Object{object.mesh + first_mesh, object.material + first_material, placement * object.model});
+    if (!with_lights) return;
+    for (Light light : content.lights) {
+        light.position = glm::vec3(placement * glm::vec4(light.position, 1.0f));
+        const glm::vec3 direction = glm::mat3(placement) * light.direction;
+        if (glm::length(direction) > 0.0f) light.direction = glm::normalize(direction);
+        scene.lights.push_back(light);
+    }
+}
+
+Scene make_gltf_scene(const GltfContent& content, const std::string& source) {
+    Scene scene;
+    scene.source = source;
+    append_gltf_content(scene, content, glm::mat4(1.0f), true);
+    if (content.camera) {
+        scene.camera = content.camera->camera;
+        if (content.camera->aspect_ratio > 0.0f)
+            scene.height = int(std::clamp(std::round(float(scene.width) / content.camera->aspect_ratio), 1.0f,
+                                          float(kMaxImageDimension)));
+    } else {
+        scene.camera = framing_camera(content.bounds, float(scene.width) / float(scene.height));
+    }
+    if (scene.lights.empty()) scene.lights = default_light_rig(scene.camera, content.bounds);
+    validate_scene(scene);
+    return scene;
+}
+
+}  // namespace tessera

@@ -1,0 +1,104 @@
+// glTF 2.0 import: a .gltf (JSON with external or data-URI buffers and images)
+// or a .glb file becomes meshes, materials, textures, placed objects, lights and
+// a camera, ready to append to a Scene. Parsing is tinygltf's; every accessor,
+// buffer view and index is checked here before it is read, so a bad file ends in
+// a SceneError "file: what is wrong (which accessor, mesh, image...)", never a crash.
+//
+// What is read, and how:
+// - The default scene (`scene`), else scene 0, else every root node. World
+//   transform = parent × (matrix, or T·R·S). Each node with a mesh places one
+//   Object per primitive; a mesh used by several nodes is converted once.
+// - Primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (turned into triangle
+//   lists). POINTS and LINE* are not surfaces: skipped and counted
+//   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
+//   POSITION (required), NORMAL, TEXCOORD_0 (float, or normalized u8/u16) and
+//   TANGENT. Without NORMAL the primitive gets flat normals, as glTF requires
+//   (its vertices are split per triangle). Sparse accessors, accessors without a
+//   buffer view, morph targets and skins are not supported (skins: the mesh
+//   is drawn unskinned; sparse accessors are an error).
+// - Materials (pbrMetallicRoughness): baseColorFactor.rgb × baseColorTexture
+//   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
+//   linear texture); occlusionTexture (R, strength); normalTexture (scale);
+//   emissiveFactor × emissiveTexture (sRGB), × KHR_materials_emissive_strength.
+//   Alpha is ignored: alphaMode MASK and BLEND render as OPAQUE. Other material
+//   extensions (transmission, specular-glossiness, ...) are ignored. A primitive
+//   without a material gets glTF's default (white, metallic 1, roughness 1).
+// - Textures: one Texture per (image, colour space), decoded with OpenImageIO
+//   (PNG, JPEG, ...). Only TEXCOORD_0 is used (texCoord > 0 reads set 0).
+//   Wrapping follows the sampler's wrapS; wrapT is ignored; MIRRORED_REPEAT
+//   wraps as REPEAT. Filters are always trilinear. glTF's UV origin (top-left)
+//   is Texture's: no flip.
+// - Cameras: the first perspective camera met in the node walk (depth first,
+//   in node order). It looks down its node's -Z with +Y up; yfov, znear, zfar
+//   (absent = infinite: a far plane past the model's bounds is chosen) and
+//   aspectRatio (kept in GltfCamera; 0 when absent). Orthographic cameras are
+//   skipped.
+// - KHR_lights_punctual: point, spot and directional lights on nodes. Light::color
+//   = color × intensity, used as is: glTF's candela (point, spot) is taken as
+//   our radiance·distance² and lux (directional) as radiance, with no 4π or 683
+//   factors. Spot cone angles: radians to degrees; direction = the node's -Z.
+//   range -> Light::range (absent = 0 = unlimited).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/framing.hpp"
+#include "tessera/scene.hpp"
+
+namespace tessera {
+
+struct GltfCamera {
+    Camera camera;             // world space
+    float aspect_ratio = 0.0f;  // width / height the file asks for; 0 = not given
+};
+
+// What one glTF file holds, in its own index space: Object::mesh and ::material
+// and TextureSlot::texture index the vectors here.
+struct GltfContent {
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<std::shared_ptr<const texture::Texture>> textures;
+    std::vector<Object> objects;  // model = the node's world transform
+    std::vector<Light> lights;    // world space
+    std::optional<GltfCamera> camera;
+    Bounds bounds;                // world box of every object
+    int skipped_primitives = 0;   // points and lines, not drawn
+};
+
+struct GltfReadOptions {
+    // Whether external buffers and images (URIs naming files) are read, relative
+    // to base_dir. Off for the fuzzer, which must not read the machine's files.
+    bool read_external_files = true;
+};
+
+// Reads a .gltf or .glb file (told apart by the "glTF" magic, not the name).
+GltfContent import_gltf_file(const std::filesystem::path& path);
+// The same from bytes in memory; `source` names the file in messages, and
+// external files resolve against base_dir.
+GltfContent import_gltf(std::span<const std::uint8_t> bytes, const std::string& source,
+                        const std::filesystem::path& base_dir, const GltfReadOptions& options = {});
+
+// True for a path ending in .gltf or .glb (any case).
+bool is_gltf_path(const std::filesystem::path& path);
+
+// Appends the content's meshes, materials, textures and objects to `scene`,
+// with `placement` applied before each object's own transform (world =
+// placement × node world). Its lights too when with_lights, moved the same way.
+// The camera is not used. Indices are shifted to the scene's.
+void append_gltf_content(Scene& scene, const GltfContent& content, const glm::mat4& placement, bool with_lights);
+
+// A scene showing one glTF file on its own: 1280 pixels wide; the file's camera
+// (height = round(1280 / aspectRatio) when it gives one, else 720) or
+// framing_camera; the file's lights or default_light_rig. Validated.
+Scene make_gltf_scene(const GltfContent& content, const std::string& source);
+
+}  // namespace tessera
