@@ -23,7 +23,7 @@ function(tessera_add_fuzzers)
   if(NOT TESSERA_BUILD_FUZZERS)
     return()
   endif()
-  foreach(target scene_parser rasterizer)
+  foreach(target scene_parser gltf_loader rasterizer)
     add_executable(fuzz_${target}
       ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_${target}.cpp
       ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_targets.cpp)

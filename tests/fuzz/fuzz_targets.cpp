@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/gltf_import.hpp"
 #include "scene/scene_validation.hpp"
 #include "tessera/renderer.hpp"
 
@@ -85,6 +86,25 @@ void scene_parser(const std::uint8_t* data, std::size_t size) {
         invariant_failed("parse_scene accepted a scene that validate_scene refuses");
     }
     // Small frames keep the fuzzer fast; the camera's aspect ratio follows.
+    scene.width = std::min(scene.width, 32);
+    scene.height = std::min(scene.height, 32);
+    check_frame(renderer().render(scene), scene);
+}
+
+void gltf_loader(const std::uint8_t* data, std::size_t size) {
+    Scene scene;
+    try {
+        const GltfContent content = import_gltf({data, size}, "fuzz.glb", "", {.read_external_files = false});
+        scene = make_gltf_scene(content, "fuzz.glb");  // validates
+    } catch (const SceneError&) {
+        return;
+    }
+    try {
+        validate_scene(scene);
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        invariant_failed("make_gltf_scene returned a scene that validate_scene refuses");
+    }
     scene.width = std::min(scene.width, 32);
     scene.height = std::min(scene.height, 32);
     check_frame(renderer().render(scene), scene);

@@ -43,4 +43,6 @@ void replay(const char* name, Target target) {
 
 TEST_CASE("fuzz regressions: scene parser") { replay("scene_parser", tessera::fuzz::scene_parser); }
 
+TEST_CASE("fuzz regressions: glTF loader") { replay("gltf_loader", tessera::fuzz::gltf_loader); }
+
 TEST_CASE("fuzz regressions: rasterizer") { replay("rasterizer", tessera::fuzz::rasterizer); }

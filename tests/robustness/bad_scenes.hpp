@@ -4,8 +4,11 @@
 // stands for the file name, so rows can pin the line and column ("@:3:9:").
 #pragma once
 
+#include <string>
 #include <string_view>
 #include <vector>
+
+#include "scene/gltf_test_files.hpp"
 
 namespace tessera::test {
 
@@ -182,5 +185,47 @@ inline const std::vector<BadScene>& bad_scenes() {
 }
 
 #undef TESSERA_CAMERA
+
+// Bad glTF files, made at run time by breaking the test document of
+// scene/gltf_test_files.hpp; written to disk as <name><extension> and loaded
+// with load_scene_file or the tessera binary. "@" in `expected` is the path.
+struct BadGltf {
+    std::string name;
+    std::string extension;  // ".gltf" or ".glb"
+    std::string bytes;
+    std::vector<std::string> expected;
+};
+
+inline std::vector<BadGltf> bad_gltf_files() {
+    const std::vector<std::uint8_t> glb = test_glb();
+    const std::string glb_text(glb.begin(), glb.end());
+    const std::string good = embedded_test_gltf();
+    return {
+        {"gltf_truncated_header", ".glb", glb_text.substr(0, 16), {"@: invalid glTF binary (.glb): "}},
+        {"gltf_truncated_json", ".glb", glb_text.substr(0, 200), {"@: invalid glTF binary (.glb): Invalid glTF binary."}},
+        {"gltf_truncated_bin", ".glb", glb_text.substr(0, glb_text.size() - 40), {"@: invalid glTF binary (.glb): "}},
+        {"gltf_empty", ".glb", "", {"@: invalid glTF: "}},
+        {"gltf_not_json", ".gltf", "{\"asset\": {\"version\": \"2.0\"}, ", {"@: invalid glTF: "}},
+        {"gltf_missing_bin", ".gltf", test_gltf_json("missing_buffer.bin"),
+         {"@: invalid glTF: ", "File not found : missing_buffer.bin", "(looked in '"}},
+        {"gltf_missing_texture", ".gltf",
+         replaced(good, "data:image/png;base64," + std::string(kTestPngBase64), "missing_texture.png"),
+         {"@: images[0]: cannot read image file '", "missing_texture.png'"}},
+        {"gltf_corrupt_texture", ".gltf", replaced(good, "iVBORw0KGgo", "iVBORw0KGgX"),
+         {"@: images[0]: cannot decode image: "}},
+        {"gltf_accessor_out_of_range", ".gltf", replaced(good, "\"count\": 6", "\"count\": 600000"),
+         {"@: meshes[0] 'parts' primitives[1] POSITION (accessor 4) is out of range: 600000 elements"}},
+        {"gltf_accessor_offset_huge", ".glb",
+         [&] {
+             const std::vector<std::uint8_t> bytes = make_glb(
+                 replaced(test_gltf_json(""), "\"byteOffset\": 104, \"byteLength\": 72", "\"byteOffset\": 18446744073709551600, \"byteLength\": 72"),
+                 test_gltf_buffer());
+             return std::string(bytes.begin(), bytes.end());
+         }(),
+         {"@: "}},
+        {"gltf_unknown_light_type", ".gltf", replaced(good, "\"type\": \"point\"", "\"type\": \"area\""),
+         {"@: KHR_lights_punctual lights[1] has type 'area', expected point, spot or directional"}},
+    };
+}
 
 }  // namespace tessera::test

@@ -7,6 +7,7 @@
 
 #include "robustness/bad_scenes.hpp"
 #include "tessera/scene.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -59,5 +60,27 @@ TEST_CASE("scenes at the edge of validity load") {
     }
     SUBCASE("up nearly, but not exactly, along the view direction") {
         CHECK_NOTHROW(tessera::parse_scene(camera + "up = [0.001, 0, 1]\n", "u.toml"));
+    }
+}
+
+TEST_CASE("bad glTF files are refused with the file and what is wrong, never a crash") {
+    const std::filesystem::path dir = tessera::test::output_dir("bad_gltf_files");
+    for (const tessera::test::BadGltf& row : tessera::test::bad_gltf_files()) {
+        CAPTURE(row.name);
+        const std::filesystem::path file = dir / (row.name + row.extension);
+        tessera::test::write_bytes(file, row.bytes);
+        std::string message;
+        try {
+            tessera::load_scene_file(file);
+            FAIL_CHECK("accepted");
+            continue;
+        } catch (const tessera::SceneError& error) {
+            message = error.what();
+        }
+        CHECK_MESSAGE(message.rfind(file.string() + ":", 0) == 0, message);
+        for (const std::string& part : row.expected) {
+            const std::string wanted = with_file_name(part, file.string());
+            CHECK_MESSAGE(message.find(wanted) != std::string::npos, "'" << wanted << "' not in: " << message);
+        }
     }
 }

@@ -135,6 +135,47 @@ TEST_CASE("the CLI refuses every bad scene file with its position and a non-zero
     }
 }
 
+TEST_CASE("the CLI refuses every bad glTF file with its path and a non-zero exit") {
+    const fs::path dir = tessera::test::output_dir("cli_bad_gltf");
+    std::vector<std::string> args;
+    const std::vector<tessera::test::BadGltf> rows = tessera::test::bad_gltf_files();
+    for (const tessera::test::BadGltf& row : rows) {
+        const fs::path file = dir / (row.name + row.extension);
+        write_file(file, row.bytes);
+        fs::remove(dir / (row.name + ".png"));
+        args.push_back(file.string());
+    }
+    args.push_back("-o");
+    args.push_back((dir / "{scene}.png").string());
+    const Run run = tessera_render(dir, args);
+    CHECK(run.status == 1);
+    CHECK(contains(run.err, "rendered 0 of " + std::to_string(rows.size()) + " scenes; failed: "));
+    for (const tessera::test::BadGltf& row : rows) {
+        CAPTURE(row.name);
+        const std::string file = (dir / (row.name + row.extension)).string();
+        const std::string line = error_line_for(run.err, file);
+        CHECK_MESSAGE(!line.empty(), "no error line for " << file << " in:\n" << run.err);
+        for (const std::string& part : row.expected) {
+            const std::string wanted = with_file_name(part, file);
+            CHECK_MESSAGE(contains(line, wanted), "'" << wanted << "' not in: " << line);
+        }
+        CHECK_FALSE(fs::exists(dir / (row.name + ".png")));
+    }
+}
+
+TEST_CASE("the CLI renders a .glb on its own") {
+    const fs::path dir = tessera::test::output_dir("cli_gltf");
+    const fs::path model = dir / "document.glb";
+    write_file(model, [] {
+        const std::vector<std::uint8_t> bytes = tessera::test::test_glb();
+        return std::string(bytes.begin(), bytes.end());
+    }());
+    fs::remove(dir / "document.png");
+    const Run run = tessera_render(dir, {model.string(), "-o", (dir / "document.png").string(), "--width", "64"});
+    CHECK_MESSAGE(run.status == 0, run.err);
+    CHECK(fs::exists(dir / "document.png"));
+}
+
 TEST_CASE("the CLI refuses bad files, arguments and sizes") {
     const fs::path dir = tessera::test::output_dir("cli_bad_arguments");
     const fs::path scene = dir / "small.toml";
