@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   g++ make cmake pkg-config
   libglm-dev libtbb-dev libopenimageio-dev libxsimd-dev libtomlplusplus-dev libcli11-dev
+  libtinygltf-dev nlohmann-json3-dev
 )
 if [ "${1:-all}" != render ]; then
   packages+=(
