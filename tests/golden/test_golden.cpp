@@ -39,19 +39,12 @@ TEST_CASE("every sample-model scene matches its golden image") {
         const std::string name = scene_file.stem().string();
         SUBCASE(name.c_str()) {
             const std::filesystem::path golden = test::source_dir() / "golden" / "gltf" / (name + ".png");
-            if (test::golden_pending(name)) {
-                // Fails once the golden exists, so the pending list cannot go stale.
-                CHECK_MESSAGE(!std::filesystem::exists(golden), name << " has a golden now: remove it from golden_pending");
-                CHECK_NOTHROW(load_scene_file(scene_file));
-                MESSAGE(name << ": golden pending texture sampling; the scene loads");
-            } else {
-                const RenderedImage& image = renderer.render(load_scene_file(scene_file));
-                const auto result = test::compare_with_golden(image, golden,
-                                                              std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures",
-                                                              "gltf_" + name);
-                CHECK_MESSAGE(result.passed, name << ": " << result.message);
-                MESSAGE(name << ": " << result.message);
-            }
+            const RenderedImage& image = renderer.render(load_scene_file(scene_file));
+            const auto result = test::compare_with_golden(image, golden,
+                                                          std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures",
+                                                          "gltf_" + name);
+            CHECK_MESSAGE(result.passed, name << ": " << result.message);
+            MESSAGE(name << ": " << result.message);
         }
     }
 }
