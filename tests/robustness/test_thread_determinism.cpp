@@ -12,8 +12,15 @@
 using namespace tessera;
 
 TEST_CASE("every bundled scene is bit-identical for 1, 2, 3, 7 and 16 threads and across runs") {
-    const std::vector<std::filesystem::path> scenes = test::scene_files();
+    std::vector<std::filesystem::path> scenes = test::scene_files();
     REQUIRE(scenes.size() >= 2);
+    // scenes/gltf/ too, where the sample models are (textured, normal-mapped, glTF lights).
+    if (std::filesystem::is_directory(test::assets_dir())) {
+        const std::vector<std::filesystem::path> models = test::gltf_scene_files();
+        scenes.insert(scenes.end(), models.begin(), models.end());
+    } else {
+        MESSAGE("scenes/gltf skipped: no sample models at " << test::assets_dir().string());
+    }
     for (const std::filesystem::path& path : scenes) {
         CAPTURE(path.string());
         const Scene scene = load_scene_file(path);
