@@ -36,6 +36,7 @@ int run_bench(const BenchCommand& cmd) {
     Scene scene = load_scene_file(cmd.scene_path);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
+    if (cmd.msaa > 0) scene.msaa = cmd.msaa;
     RenderSettings settings = cmd.settings;
     settings.keep_radiance = cmd.keep_radiance;
     Renderer renderer(settings);
@@ -79,11 +80,11 @@ int run_bench(const BenchCommand& cmd) {
     const double ns_per_fragment_light = shade_median * 1e6 * renderer.threads() / (shaded * light_count);
 
     if (cmd.json) {
-        std::printf("{\"scene\": \"%s\", \"width\": %d, \"height\": %d, \"threads\": %d, \"isa\": \"%s\", "
+        std::printf("{\"scene\": \"%s\", \"width\": %d, \"height\": %d, \"msaa\": %d, \"threads\": %d, \"isa\": \"%s\", "
                     "\"tile_size\": %d, \"frames\": %d, \"frame_ms_median\": %.3f, \"frame_ms_min\": %.3f, "
                     "\"frame_ms_max\": %.3f, \"stages_ms\": {",
-                    cmd.scene_path.c_str(), scene.width, scene.height, renderer.threads(), renderer.isa_name().c_str(),
-                    cmd.settings.tile_size, cmd.frames, frame.median, frame.min, frame.max);
+                    cmd.scene_path.c_str(), scene.width, scene.height, scene.msaa, renderer.threads(),
+                    renderer.isa_name().c_str(), cmd.settings.tile_size, cmd.frames, frame.median, frame.min, frame.max);
         for (std::size_t i = 0; i < stages.size(); ++i)
             std::printf("%s\"%s\": %.3f", i ? ", " : "", stages[i].name, summarize(stages[i].samples).median);
         std::printf("}, \"triangles\": %llu, \"triangles_binned\": %llu, \"fragments_rasterized\": %llu, "
@@ -94,9 +95,9 @@ int run_bench(const BenchCommand& cmd) {
                     scene.lights.size(), mfrag_per_s, ns_per_fragment_light, rss_peak, rss_peak - rss_after_warmup);
         return 0;
     }
-    std::printf("%s: %dx%d, %d threads, %s kernels, tile %d, %d frames after %d warm-up\n", cmd.scene_path.c_str(),
-                scene.width, scene.height, renderer.threads(), renderer.isa_name().c_str(), cmd.settings.tile_size,
-                cmd.frames, cmd.warmup);
+    std::printf("%s: %dx%d, msaa %d, %d threads, %s kernels, tile %d, %d frames after %d warm-up\n",
+                cmd.scene_path.c_str(), scene.width, scene.height, scene.msaa, renderer.threads(),
+                renderer.isa_name().c_str(), cmd.settings.tile_size, cmd.frames, cmd.warmup);
     std::printf("frame        median %8.2f ms   min %8.2f   max %8.2f\n", frame.median, frame.min, frame.max);
     std::printf("stage medians (steps within the triangle and tile passes: busy time over all workers / threads):\n");
     for (const Series& stage : stages)

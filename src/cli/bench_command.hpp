@@ -14,6 +14,7 @@ struct BenchCommand {
     int warmup = 3;
     int width = 0;  // 0: the scene's own
     int height = 0;
+    int msaa = 0;  // 0: the scene's own
     bool json = false;
     bool keep_radiance = false;  // like a render to PNG; --radiance adds the EXR's HDR image
     RenderSettings settings;

@@ -28,6 +28,7 @@ struct RenderCommand {
     std::vector<std::string> outputs;  // may hold {scene}, replaced by each scene file's stem
     int width = 0;                     // 0: the scene's own
     int height = 0;
+    int msaa = 0;                      // 0: the scene's own
     bool stats = false;
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
@@ -87,6 +88,7 @@ void render_scene(const RenderCommand& cmd, const std::string& scene_path, tesse
     tessera::Scene scene = tessera::load_scene_file(scene_path);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
+    if (cmd.msaa > 0) scene.msaa = cmd.msaa;
     if ((cmd.width > 0 || cmd.height > 0) &&
         static_cast<long long>(scene.width) * scene.height > tessera::kMaxImagePixels) {
         throw std::invalid_argument(scene_path + ": image size " + std::to_string(scene.width) + "x" +
@@ -139,7 +141,9 @@ int run_render(const RenderCommand& cmd) {
 }
 
 // The options render and bench share: output size and how the renderer runs.
-void add_frame_options(CLI::App* command, int& width, int& height, tessera::RenderSettings& settings) {
+void add_frame_options(CLI::App* command, int& width, int& height, int& msaa, tessera::RenderSettings& settings) {
+    command->add_option("--msaa", msaa, "Samples per pixel, 1 or 4 (overrides the scene's output.msaa)")
+        ->check(CLI::IsMember({1, 4}));
     command->add_option("--width", width, "Override the scene's image width in pixels")
         ->check(CLI::Range(1, tessera::kMaxImageDimension));
     command->add_option("--height", height, "Override the scene's image height in pixels")
@@ -173,7 +177,7 @@ int main(int argc, char** argv) {
                            "Add surface data to every .exr output, a comma-separated list of depth, normal, albedo, "
                            "roughness, metallic, position (channels Z, N.XYZ, albedo.RGB, roughness, metallic, P.XYZ)")
         ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
-    add_frame_options(render_app, render.width, render.height, render.settings);
+    add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
 
     tessera::cli::BenchCommand bench;
@@ -181,7 +185,7 @@ int main(int argc, char** argv) {
     bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
     bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
     bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
-    add_frame_options(bench_app, bench.width, bench.height, bench.settings);
+    add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
     bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
 

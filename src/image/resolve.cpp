@@ -132,4 +132,49 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
     });
 }
 
+void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect, std::size_t count,
+                       const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
+                       RenderedImage& image) {
+    constexpr int n = raster::kMsaaSamples;
+    static_assert(n == 4, "the averages below add four samples in pairs");
+    if (!image.radiance.empty()) for (int y = 0; y < rect.height(); ++y) {
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::int32_t* fragment = &samples.fragment[std::size_t(n) * (std::size_t(y) * samples.side + x)];
+            const std::size_t i = 3 * (std::size_t(rect.y0 + y) * image.width + rect.x0 + x);
+            const float* planes[3] = {shaded.r, shaded.g, shaded.b};
+            for (int c = 0; c < 3; ++c) {
+                float v[n];
+                for (int s = 0; s < n; ++s) v[s] = fragment[s] >= 0 ? planes[c][fragment[s]] : clear.radiance[c];
+                image.radiance[i + c] = ((v[0] + v[1]) + (v[2] + v[3])) * 0.25f;
+            }
+        }
+    }
+    if (count > 0) shade::tonemap_gamma(isa, count, shaded.r, shaded.g, shaded.b);
+    for (int y = 0; y < rect.height(); ++y) {
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::int32_t* fragment = &samples.fragment[std::size_t(n) * (std::size_t(y) * samples.side + x)];
+            std::uint8_t* display = &image.display[3 * (std::size_t(rect.y0 + y) * image.width + rect.x0 + x)];
+            const float* planes[3] = {shaded.r, shaded.g, shaded.b};
+            for (int c = 0; c < 3; ++c) {
+                unsigned sum = 0;
+                for (int s = 0; s < n; ++s)
+                    sum += fragment[s] >= 0 ? quantize_unorm8(planes[c][fragment[s]]) : clear.display[c];
+                display[c] = std::uint8_t((sum + n / 2) / n);
+            }
+        }
+    }
+}
+
+void resolve_aov_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect,
+                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image) {
+    for (int y = 0; y < rect.height(); ++y) {
+        const std::size_t first = std::size_t(rect.y0 + y) * image.width + rect.x0;
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::int32_t k = samples.fragment[std::size_t(raster::kMsaaSamples) * (std::size_t(y) * samples.side + x)];
+            if (k >= 0) write_aov_fragment(image.aov, first + x, surface, std::size_t(k), view_depth);
+            else write_aov_background(image.aov, first + x);
+        }
+    }
+}
+
 }  // namespace tessera::image

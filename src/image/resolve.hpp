@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "raster/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/shade_kernels.hpp"
 #include "tessera/renderer.hpp"
@@ -60,5 +61,21 @@ struct ViewDepth {
 // planes' background values.
 void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect,
                       const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image);
+
+// The same for a 4×-multisampled tile: each sample takes its fragment's
+// value (TileSamples::fragment) or the background's, and a pixel is the
+// average of its samples, as a GL multisampled RGBA8 framebuffer resolves:
+// radiance is the mean of the samples' radiance (summed in pairs, so four
+// equal samples give exactly that value); display is the mean of the samples'
+// 8-bit values, rounded to nearest (halves up).
+void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect, std::size_t count,
+                       const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
+                       RenderedImage& image);
+
+// AOVs of a 4×-multisampled tile are not averaged (a mean of depths or normals
+// is no surface's value): a pixel holds what its sample 0 shows, surface or
+// background.
+void resolve_aov_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect,
+                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image);
 
 }  // namespace tessera::image

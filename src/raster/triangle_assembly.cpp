@@ -11,8 +11,9 @@ static_assert(sizeof(geometry::ScreenVertex) == 4 * sizeof(std::int32_t), "the s
 // Accepted triangles waiting for the setup kernel, kept in submission order.
 class SetupQueue {
 public:
-    SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, AssembledTriangles& out)
-        : isa_(isa), frame_(frame), viewport_(viewport), out_(out) {
+    SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, AssembledTriangles& out,
+               int samples)
+        : isa_(isa), frame_(frame), viewport_(viewport), out_(out), samples_(samples) {
         in_.screen = reinterpret_cast<const std::int32_t*>(frame.screen.data());
         in_.count = 0;
         in_.width = viewport.width;
@@ -20,7 +21,7 @@ public:
     }
 
     void push(const std::array<std::uint32_t, 3>& ref) {
-        if (isa_ == simd::Isa::scalar) return set_up_one(ref);
+        if (isa_ == simd::Isa::scalar || samples_ != 1) return set_up_one(ref);
         for (int k = 0; k < 3; ++k) in_.ref[k][in_.count] = std::int32_t(ref[k]);
         if (++in_.count == kSetupBatch) flush();
     }
@@ -57,7 +58,7 @@ public:
 private:
     void set_up_one(const std::array<std::uint32_t, 3>& ref) {
         const auto set_up = setup_triangle(
-            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref);
+            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref, samples_);
         if (set_up) out_.triangles.push_back(*set_up);
     }
 
@@ -65,6 +66,7 @@ private:
     const FrameVertices& frame_;
     geometry::Viewport viewport_;
     AssembledTriangles& out_;
+    int samples_;
     SetupBatchInput in_;
     SetupBatchOutput verdicts_;
 };
@@ -74,8 +76,8 @@ private:
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out) {
-    SetupQueue queue(isa, frame, viewport, out);
+                        AssembledTriangles& out, int samples) {
+    SetupQueue queue(isa, frame, viewport, out, samples);
     geometry::ClippedPolygon polygon;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
         if (indices[t] >= vertex_count || indices[t + 1] >= vertex_count || indices[t + 2] >= vertex_count) continue;
@@ -104,7 +106,7 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
         for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0
             const auto set_up = setup_triangle(
                 viewport, {polygon.corners[0].clip_pos, polygon.corners[i].clip_pos, polygon.corners[i + 1].clip_pos},
-                {corner_ref[0], corner_ref[i], corner_ref[i + 1]});
+                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, samples);
             if (set_up) out.triangles.push_back(*set_up);
         }
     }

@@ -32,10 +32,11 @@ struct AssembledTriangles {
 // culling, clipping and setup, in order. Accepted
 // triangles use the precomputed screen vertices and are set up a vector at a
 // time with the ISA's kernels (the same result as one by one); clipped ones
-// become fans.
+// become fans. samples: 1, or 4 for 4× MSAA (set up one by one: the kernels
+// test pixel centres only).
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out);
+                        AssembledTriangles& out, int samples = 1);
 
 }  // namespace tessera::raster

@@ -33,11 +33,13 @@ using geometry::Viewport;
 // Makes a RasterTriangle of three screen vertices, or nothing when the
 // triangle has no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
+// With samples = 4 (raster/msaa.hpp) the test and the pixel box are about the
+// pixels' sample positions instead of their centres.
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
-                                             const std::array<std::uint32_t, 3>& vertex);
+                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1);
 // The same from clip positions (each inside the near plane and the guard band).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
-                                             const std::array<std::uint32_t, 3>& vertex);
+                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1);
 
 // Edge function of the edge a→b at point p, all in fixed point: twice the
 // signed area of (a, b, p), positive when p lies inside a set-up triangle.

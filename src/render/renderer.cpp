@@ -19,6 +19,7 @@
 #include "geometry/clipper.hpp"
 #include "geometry/vertex_stage.hpp"
 #include "image/resolve.hpp"
+#include "raster/msaa.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
@@ -49,6 +50,9 @@ simd::Isa parse_isa(const std::string& name) {
 // One worker's memory, reserved once and reused, and its busy time this frame.
 struct WorkerScratch {
     raster::TileBuffers raster;
+    raster::TileSamples samples;             // 4× MSAA only
+    raster::TileFragments sample_fragments;  // 4× MSAA only
+    int reserved_msaa = 0;
     shade::FragmentBuffer fragments;
     std::vector<shade::MaterialRun> material_runs;
     shade::MaterialScratch material_scratch;
@@ -57,12 +61,15 @@ struct WorkerScratch {
     std::uint64_t fragments_shaded = 0;
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
-    void reserve(int tile_side) {
+    void reserve(int tile_side, int msaa) {
         raster.reset(tile_side);
-        const std::size_t pixels = std::size_t(tile_side) * tile_side;
-        fragments.reserve(pixels);
-        material_runs.reserve(pixels);
-        material_scratch.reserve(pixels);
+        // With MSAA a pixel has up to one fragment per sample.
+        const std::size_t max_fragments = std::size_t(tile_side) * tile_side * msaa;
+        if (msaa > 1) samples.reset(tile_side), sample_fragments.reserve(tile_side);
+        reserved_msaa = msaa;
+        fragments.reserve(max_fragments);
+        material_runs.reserve(max_fragments);
+        material_scratch.reserve(max_fragments);
     }
 };
 
@@ -84,6 +91,8 @@ void check_renderable(const Scene& scene) {
         if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0)
             throw std::invalid_argument("mesh '" + mesh.name + "' needs one normal per position and whole triangles");
     }
+    if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
+        throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
 }
 
 // Sizes the AOV planes the settings ask for (memory kept from frame to
@@ -167,6 +176,12 @@ struct Renderer::Frame {
     void assemble_and_bin(const Scene& scene);
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    void render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
+    shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
+    const raster::RasterTriangle& triangle_of(std::uint32_t id) const {
+        return chunks[id >> render::kChunkIdShift].assembled.triangles[id & render::kChunkIndexMask];
+    }
     void describe_for_textures(const raster::RasterTriangle& t, const Mesh& mesh, shade::TriangleCorners& corners) const;
 };
 
@@ -284,7 +299,7 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
         render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
-                                   chunk.assembled);
+                                   chunk.assembled, scene.msaa);
         const auto t1 = Clock::now();
         chunk.bins.build(grid, chunk.assembled.triangles);
         s.clip_setup_ms += ms_between(t0, t1);
@@ -317,8 +332,9 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
         WorkerScratch& s = scratch.local();
-        if (s.raster.side != grid.tile_size) s.reserve(grid.tile_size);
-        render_tile(scene, clear, tile, s);
+        if (s.raster.side != grid.tile_size || s.reserved_msaa < scene.msaa) s.reserve(grid.tile_size, scene.msaa);
+        if (scene.msaa > 1) render_tile_msaa(scene, clear, tile, s);
+        else render_tile(scene, clear, tile, s);
     });
     const double threads = arena.max_concurrency();
     for (const WorkerScratch& s : scratch) {
@@ -380,19 +396,35 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     }
 
     // Shade every visible pixel once.
-    auto lookup = [&](std::uint32_t id) {
-        const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
-        const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
-        const Object& object = scene.objects[chunk.object];
-        shade::TriangleCorners corners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
-                                        &chunk.vertex(t.vertex[2], vertices)},
-                                       &scene.materials[object.material]};
-        if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
-        return corners;
-    };
-    const std::size_t count = shade::gather_surface_points(s.raster, rect.width(), rect.height(), lookup, s.fragments,
-                                                           s.material_runs);
+    const std::size_t count = shade::gather_surface_points(
+        s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
+        s.material_runs);
     const shade::RadianceOutputs shaded = s.fragments.outputs();
+    shade_tile(scene, count, s);
+    const auto t2 = Clock::now();
+
+    image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+    if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
+    const auto t3 = Clock::now();
+    s.rasterize_ms += ms_between(t0, t1);
+    s.shade_ms += ms_between(t1, t2);
+    s.resolve_ms += ms_between(t2, t3);
+}
+
+shade::TriangleCorners Renderer::Frame::corners_of(const Scene& scene, std::uint32_t id) const {
+    const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
+    const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
+    const Object& object = scene.objects[chunk.object];
+    shade::TriangleCorners corners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
+                                    &chunk.vertex(t.vertex[2], vertices)},
+                                   &scene.materials[object.material]};
+    if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
+    return corners;
+}
+
+// Textures, lights and emission for the `count` gathered fragments; their
+// radiance goes to s.fragments.outputs().
+std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, WorkerScratch& s) const {
     if (count > 0) {
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
         const shade::FragmentInputs inputs = s.fragments.inputs(count);
@@ -400,14 +432,46 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
             settings.light_culling && lights.any_range
                 ? shade::lights_reaching(lights, shade::fragment_bounds(inputs), s.tile_lights)
                 : lights;
-        shade::shade_fragments(isa, inputs, tile_lights, shaded);
+        shade::shade_fragments(isa, inputs, tile_lights, s.fragments.outputs());
         shade::add_emission(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;
+    return count;
+}
+
+// render_tile with 4 samples per pixel: depth and triangle per sample, one
+// fragment per pixel and visible triangle, pixels the mean of their samples.
+void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
+    const raster::TileRect rect = grid.rect(tile);
+    const auto t0 = Clock::now();
+    const std::uint64_t passed_before = s.counters.depth_passed;
+    bool reset = false;
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+        const render::Chunk& chunk = chunks[c];
+        for (const std::uint32_t index : chunk.bins.tile(tile)) {
+            if (!reset) s.samples.reset(grid.tile_size), reset = true;
+            const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
+            raster::rasterize_triangle_msaa(chunk.assembled.triangles[index], id, rect, s.samples, s.counters);
+        }
+    }
+    const auto t1 = Clock::now();
+    if (s.counters.depth_passed == passed_before) {  // nothing drawn here: background only
+        image::clear_tile(rect, clear, image);
+        s.resolve_ms += ms_between(t1, Clock::now());
+        s.rasterize_ms += ms_between(t0, t1);
+        return;
+    }
+    raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
+        return triangle_of(id);
+    }, s.sample_fragments);
+    const std::size_t count = shade::gather_surface_points(
+        s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
+    const shade::RadianceOutputs shaded = s.fragments.outputs();
+    shade_tile(scene, count, s);
     const auto t2 = Clock::now();
 
-    image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
-    if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
+    image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
+    if (!image.aov.empty()) image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
     const auto t3 = Clock::now();
     s.rasterize_ms += ms_between(t0, t1);
     s.shade_ms += ms_between(t1, t2);

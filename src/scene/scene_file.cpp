@@ -8,6 +8,7 @@
 //   height = 720                    # integer in 1..kMaxImageDimension; default 720
 //                                   # and width · height <= kMaxImagePixels (2^27)
 //   clear_color = [0.1, 0.1, 0.1]   # display-referred RGB, each in [0, 1]; default (0.1, 0.1, 0.1)
+//   msaa = 4                        # samples per pixel, 1 or 4; default 1
 //
 //   [camera]                        # required table
 //   position = [0, 0, 22]           # required, world space
@@ -293,7 +294,7 @@ private:
     }
 
     void read_output(const toml::table& output, Scene& scene) const {
-        check_keys(output, "output", {"width", "height", "clear_color"});
+        check_keys(output, "output", {"width", "height", "clear_color", "msaa"});
         if (const toml::node* n = output.get("width")) scene.width = read_dimension(*n, "output.width");
         if (const toml::node* n = output.get("height")) scene.height = read_dimension(*n, "output.height");
         // 16384 per side is allowed, but not both at once: the frame would need ~4 GB.
@@ -307,6 +308,13 @@ private:
         }
         if (const toml::node* n = output.get("clear_color")) {
             scene.clear_color = read_vec3(*n, "output.clear_color", kUnitInterval);
+        }
+        if (const toml::node* n = output.get("msaa")) {
+            const auto* integer = n->as_integer();
+            if (integer == nullptr) fail_type(*n, "an integer", "output.msaa");
+            if (integer->get() != 1 && integer->get() != 4)
+                fail_at(n->source(), "expected 'output.msaa' to be 1 or 4, got " + std::to_string(integer->get()));
+            scene.msaa = static_cast<int>(integer->get());
         }
     }
 

@@ -37,6 +37,7 @@ void validate_size(const Scene& scene) {
         fail(scene, "image size ", scene.width, "x", scene.height, " is ", pixels, " pixels; at most ",
              kMaxImagePixels, " are allowed");
     }
+    if (scene.msaa != 1 && scene.msaa != 4) fail(scene, "msaa is ", scene.msaa, "; expected 1 or 4 samples per pixel");
 }
 
 void validate_camera(const Scene& scene) {

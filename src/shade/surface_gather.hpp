@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/shaded_vertex.hpp"
+#include "raster/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/shade_kernels.hpp"
 #include "tessera/scene.hpp"
@@ -84,73 +86,118 @@ struct TriangleCorners {
 // evaluate this triangle's interpolants there.
 template <class Lookup>
 std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs);
+
+// The same for a 4×-multisampled tile: one fragment per entry of `fragments`
+// (raster/msaa.hpp), at its own λ1 λ2; derivatives as above, from its pixel.
+template <class Lookup>
+std::size_t gather_surface_points(const raster::TileFragments& fragments, Lookup&& lookup, FragmentBuffer& out,
+                                  std::vector<MaterialRun>& runs);
+
+namespace detail {
+
+// The gather's state: the cached triangle, the fragments and runs written so far.
+template <class Lookup>
+class SurfaceGather {
+public:
+    SurfaceGather(Lookup& lookup, FragmentBuffer& out, std::vector<MaterialRun>& runs)
+        : lookup_(lookup), out_(out), runs_(runs) {
+        runs_.clear();
+    }
+
+    // Gathers one fragment of triangle `id` at tile pixel (x, y) with screen-space barycentrics λ1 λ2.
+    [[gnu::always_inline]] void add(int x, int y, std::uint32_t id, float lambda1, float lambda2) {
+        using C = FragmentBuffer;
+        if (id != cached_id_) {
+            cached_id_ = id;
+            c_ = lookup_(id);
+            textured_ = c_.material->has_maps();
+            // As the viewport transform computed it (ScreenVertex::inv_w).
+            for (int k = 0; k < 3; ++k) inv_w_[k] = 1.0f / c_.corner[k]->clip_pos.w;
+            world0_ = c_.corner[0]->world_pos;
+            world_d1_ = c_.corner[1]->world_pos - world0_, world_d2_ = c_.corner[2]->world_pos - world0_;
+            normal0_ = c_.corner[0]->normal;
+            normal_d1_ = c_.corner[1]->normal - normal0_, normal_d2_ = c_.corner[2]->normal - normal0_;
+            uv0_ = c_.corner[0]->uv;
+            uv_d1_ = c_.corner[1]->uv - uv0_, uv_d2_ = c_.corner[2]->uv - uv0_;
+        }
+        if (runs_.empty() || runs_.back().material != c_.material) {
+            if (!runs_.empty()) runs_.back().end = std::uint32_t(count_);
+            runs_.push_back({std::uint32_t(count_), 0, c_.material, textured_});
+        }
+        const auto [b1, b2] = raster::perspective_barycentrics(inv_w_, lambda1, lambda2);
+        const glm::vec3 world = world0_ + b1 * world_d1_ + b2 * world_d2_;
+        out_.set(count_, world, normal0_ + b1 * normal_d1_ + b2 * normal_d2_, *c_.material);
+        if (textured_) {
+            const glm::vec2 uv = uv0_ + b1 * uv_d1_ + b2 * uv_d2_;
+            // The quad partners: the pixel beside this one in the quad's row and in its column.
+            const float step_x = (x & 1) ? -1.0f : 1.0f, step_y = (y & 1) ? -1.0f : 1.0f;
+            const auto [bx1, bx2] = raster::perspective_barycentrics(
+                inv_w_, lambda1 + step_x * c_.lambda1_dx, lambda2 + step_x * c_.lambda2_dx);
+            const auto [by1, by2] = raster::perspective_barycentrics(
+                inv_w_, lambda1 + step_y * c_.lambda1_dy, lambda2 + step_y * c_.lambda2_dy);
+            // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
+            const glm::vec2 duv_dx = step_x * ((bx1 - b1) * uv_d1_ + (bx2 - b2) * uv_d2_);
+            const glm::vec2 duv_dy = -step_y * ((by1 - b1) * uv_d1_ + (by2 - b2) * uv_d2_);
+            const glm::vec3 dp_dx = step_x * ((bx1 - b1) * world_d1_ + (bx2 - b2) * world_d2_);
+            const glm::vec3 dp_dy = -step_y * ((by1 - b1) * world_d1_ + (by2 - b2) * world_d2_);
+            const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
+                                    dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
+            for (int k = 0; k < 12; ++k) out_.channel(C::Channel(C::u + k))[count_] = values[k];
+            glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
+            if (c_.tangent[0] && c_.tangent[1] && c_.tangent[2]) {
+                const float b0 = 1.0f - b1 - b2;
+                tangent = glm::vec4(glm::vec3(*c_.tangent[0]) * b0 + glm::vec3(*c_.tangent[1]) * b1 +
+                                        glm::vec3(*c_.tangent[2]) * b2,
+                                    c_.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
+            }
+            for (int k = 0; k < 4; ++k) out_.channel(C::Channel(C::tangent_x + k))[count_] = tangent[k];
+        }
+        ++count_;
+    }
+
+    std::size_t finish() {
+        if (!runs_.empty()) runs_.back().end = std::uint32_t(count_);
+        out_.pad(count_);
+        return count_;
+    }
+
+private:
+    Lookup& lookup_;
+    FragmentBuffer& out_;
+    std::vector<MaterialRun>& runs_;
+    std::size_t count_ = 0;
+    std::uint32_t cached_id_ = raster::kNoTriangle;
+    TriangleCorners c_{};
+    bool textured_ = false;
+    std::array<float, 3> inv_w_{};
+    glm::vec3 world0_{}, world_d1_{}, world_d2_{}, normal0_{}, normal_d1_{}, normal_d2_{};
+    glm::vec2 uv0_{}, uv_d1_{}, uv_d2_{};
+};
+
+}  // namespace detail
+
+template <class Lookup>
+std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
                                   FragmentBuffer& out, std::vector<MaterialRun>& runs) {
-    using C = FragmentBuffer;
-    std::size_t count = 0;
-    runs.clear();
-    std::uint32_t cached_id = raster::kNoTriangle;
-    TriangleCorners c{};
-    bool textured = false;
-    std::array<float, 3> inv_w{};
-    glm::vec3 world0{}, world_d1{}, world_d2{}, normal0{}, normal_d1{}, normal_d2{};
-    glm::vec2 uv0{}, uv_d1{}, uv_d2{};
+    detail::SurfaceGather<std::remove_reference_t<Lookup>> gather(lookup, out, runs);
     for (int y = 0; y < height; ++y) {
         const std::size_t row = std::size_t(y) * tile.side;
         for (int x = 0; x < width; ++x) {
             if (!tile.covered(row + x)) continue;
-            const std::uint32_t id = tile.triangle[row + x];
-            if (id != cached_id) {
-                cached_id = id;
-                c = lookup(id);
-                textured = c.material->has_maps();
-                // As the viewport transform computed it (ScreenVertex::inv_w).
-                for (int k = 0; k < 3; ++k) inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
-                world0 = c.corner[0]->world_pos;
-                world_d1 = c.corner[1]->world_pos - world0, world_d2 = c.corner[2]->world_pos - world0;
-                normal0 = c.corner[0]->normal;
-                normal_d1 = c.corner[1]->normal - normal0, normal_d2 = c.corner[2]->normal - normal0;
-                uv0 = c.corner[0]->uv;
-                uv_d1 = c.corner[1]->uv - uv0, uv_d2 = c.corner[2]->uv - uv0;
-            }
-            if (runs.empty() || runs.back().material != c.material) {
-                if (!runs.empty()) runs.back().end = std::uint32_t(count);
-                runs.push_back({std::uint32_t(count), 0, c.material, textured});
-            }
-            const float lambda1 = tile.lambda1[row + x], lambda2 = tile.lambda2[row + x];
-            const auto [b1, b2] = raster::perspective_barycentrics(inv_w, lambda1, lambda2);
-            const glm::vec3 world = world0 + b1 * world_d1 + b2 * world_d2;
-            out.set(count, world, normal0 + b1 * normal_d1 + b2 * normal_d2, *c.material);
-            if (textured) {
-                const glm::vec2 uv = uv0 + b1 * uv_d1 + b2 * uv_d2;
-                // The quad partners: the pixel beside this one in the quad's row and in its column.
-                const float step_x = (x & 1) ? -1.0f : 1.0f, step_y = (y & 1) ? -1.0f : 1.0f;
-                const auto [bx1, bx2] = raster::perspective_barycentrics(
-                    inv_w, lambda1 + step_x * c.lambda1_dx, lambda2 + step_x * c.lambda2_dx);
-                const auto [by1, by2] = raster::perspective_barycentrics(
-                    inv_w, lambda1 + step_y * c.lambda1_dy, lambda2 + step_y * c.lambda2_dy);
-                // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
-                const glm::vec2 duv_dx = step_x * ((bx1 - b1) * uv_d1 + (bx2 - b2) * uv_d2);
-                const glm::vec2 duv_dy = -step_y * ((by1 - b1) * uv_d1 + (by2 - b2) * uv_d2);
-                const glm::vec3 dp_dx = step_x * ((bx1 - b1) * world_d1 + (bx2 - b2) * world_d2);
-                const glm::vec3 dp_dy = -step_y * ((by1 - b1) * world_d1 + (by2 - b2) * world_d2);
-                const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
-                                        dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
-                for (int k = 0; k < 12; ++k) out.channel(C::Channel(C::u + k))[count] = values[k];
-                glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
-                if (c.tangent[0] && c.tangent[1] && c.tangent[2]) {
-                    const float b0 = 1.0f - b1 - b2;
-                    tangent = glm::vec4(glm::vec3(*c.tangent[0]) * b0 + glm::vec3(*c.tangent[1]) * b1 +
-                                            glm::vec3(*c.tangent[2]) * b2,
-                                        c.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
-                }
-                for (int k = 0; k < 4; ++k) out.channel(C::Channel(C::tangent_x + k))[count] = tangent[k];
-            }
-            ++count;
+            gather.add(x, y, tile.triangle[row + x], tile.lambda1[row + x], tile.lambda2[row + x]);
         }
     }
-    if (!runs.empty()) runs.back().end = std::uint32_t(count);
-    out.pad(count);
-    return count;
+    return gather.finish();
+}
+
+template <class Lookup>
+std::size_t gather_surface_points(const raster::TileFragments& fragments, Lookup&& lookup, FragmentBuffer& out,
+                                  std::vector<MaterialRun>& runs) {
+    detail::SurfaceGather<std::remove_reference_t<Lookup>> gather(lookup, out, runs);
+    for (std::size_t k = 0; k < fragments.count; ++k)
+        gather.add(fragments.x[k], fragments.y[k], fragments.triangle[k], fragments.lambda1[k], fragments.lambda2[k]);
+    return gather.finish();
 }
 
 }  // namespace tessera::shade

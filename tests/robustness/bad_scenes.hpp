@@ -39,6 +39,8 @@ inline const std::vector<BadScene>& bad_scenes() {
         {"unknown_wrap", TESSERA_CAMERA "[materials.a]\nwrap = \"mirror\"\n",
          {"@:5:8:", "expected 'repeat' or 'clamp_to_edge' for 'materials.a.wrap'"}},
         // Wrong value types.
+        {"msaa_is_2", TESSERA_CAMERA "[output]\nmsaa = 2\n", {"@:5:8:", "expected 'output.msaa' to be 1 or 4, got 2"}},
+        {"msaa_is_float", TESSERA_CAMERA "[output]\nmsaa = 4.0\n", {"@:5:8:", "expected an integer for 'output.msaa', got"}},
         {"width_is_string", TESSERA_CAMERA "[output]\nwidth = \"big\"\n",
          {"@:5:9:", "expected an integer for 'output.width', got string"}},
         {"width_is_float", TESSERA_CAMERA "[output]\nwidth = 640.0\n",

@@ -1,0 +1,72 @@
+#include "raster/msaa.hpp"
+
+#include <algorithm>
+
+#include "raster/raster_limits.hpp"
+
+namespace tessera::raster {
+
+void TileSamples::reset(int tile_side) {
+    const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;
+    side = tile_side;
+    depth.assign(n, 1.0f);
+    triangle.resize(n);
+    fragment.resize(n);
+}
+
+void TileFragments::reserve(int tile_side) {
+    const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
+    x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n);
+    count = 0;
+}
+
+bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
+    const EdgeStepper e0(t.x[1], t.y[1], t.x[2], t.y[2], px, py), e1(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
+        e2(t.x[0], t.y[0], t.x[1], t.y[1], px, py);
+    return (e0.row | e1.row | e2.row) >= 0;
+}
+
+void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters) {
+    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
+    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
+    if (x_begin >= x_end || y_begin >= y_end) return;
+    const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
+    const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
+    EdgeStepper e[3] = {EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py),
+                        EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
+                        EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
+    // E is affine: at a sample it is E at the centre plus the steps scaled by
+    // the sample's offset (in 1/256 pixel, so a step / 256 is exact).
+    std::int64_t offset[3][kMsaaSamples];
+    for (int k = 0; k < 3; ++k)
+        for (int s = 0; s < kMsaaSamples; ++s)
+            offset[k][s] = (e[k].step_x / kSubpixelScale) * kSampleOffsetX[s] +
+                           (e[k].step_y / kSubpixelScale) * kSampleOffsetY[s];
+    const float inv_area = t.inv_area;
+    for (int y = y_begin; y < y_end; ++y) {
+        std::int64_t w0 = e[0].row, w1 = e[1].row, w2 = e[2].row;
+        std::size_t index = std::size_t(kMsaaSamples) * (std::size_t(y - tile.y0) * samples.side + (x_begin - tile.x0));
+        for (int x = x_begin; x < x_end; ++x, index += kMsaaSamples) {
+            for (int s = 0; s < kMsaaSamples; ++s) {
+                const std::int64_t s0 = w0 + offset[0][s], s1 = w1 + offset[1][s], s2 = w2 + offset[2][s];
+                if ((s0 | s1 | s2) < 0) continue;
+                ++counters.fragments;
+                const float lambda1 = float(s1 - e[1].bias) * inv_area;
+                const float lambda2 = float(s2 - e[2].bias) * inv_area;
+                // Linear in screen space, kept >= 0 as the one-sample rasterizer does.
+                const float z0 = t.depth[0] + lambda1 * (t.depth[1] - t.depth[0]) + lambda2 * (t.depth[2] - t.depth[0]);
+                const float z = z0 > 0.0f ? z0 : 0.0f;
+                if (z < samples.depth[index + s]) {
+                    ++counters.depth_passed;
+                    samples.depth[index + s] = z;
+                    samples.triangle[index + s] = triangle_id;
+                }
+            }
+            w0 += e[0].step_x, w1 += e[1].step_x, w2 += e[2].step_x;
+        }
+        for (EdgeStepper& edge : e) edge.row += edge.step_y;
+    }
+}
+
+}  // namespace tessera::raster

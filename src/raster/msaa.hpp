@@ -1,0 +1,100 @@
+// 4× multisampling: per-sample coverage and depth, and the fragments a pixel
+// is shaded with. The fragment shader runs once per pixel per visible
+// triangle (not per sample), as a GPU's multisampling does.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "raster/raster_limits.hpp"
+#include "raster/tile_rasterizer.hpp"
+#include "raster/triangle_setup.hpp"
+
+namespace tessera::raster {
+
+inline constexpr int kMsaaSamples = 4;
+
+// The standard 4× pattern (D3D's and Vulkan's standard sample locations) in
+// image space, y measured down from the top of the pixel, in 1/8 pixel:
+// (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875). As offsets
+// from the pixel centre in 24.8 fixed point they are exact multiples of 32.
+// (GL's llvmpipe uses the same numbers in window space, y up, i.e. this
+// pattern mirrored top to bottom as seen on screen.)
+inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetX = {-32, 96, -96, 32};
+inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetY = {-96, -32, 32, 96};
+
+// Per-sample results of rasterizing one tile: sample s of tile pixel p at
+// [kMsaaSamples · p + s]. Owned by a worker and reused from tile to tile.
+struct TileSamples {
+    int side = 0;
+    std::vector<float> depth;             // window depth of the nearest fragment, 1 = cleared
+    std::vector<std::uint32_t> triangle;  // its triangle id, where depth < 1
+    // Which of the tile's fragments (TileFragments) colours the sample; -1: background.
+    std::vector<std::int32_t> fragment;
+    void reset(int tile_side);            // clears depth to 1 (allocates only when the side grows)
+};
+
+// The pixels' fragments: one per pixel and distinct triangle among its
+// covered samples, pixels in row-major order, a pixel's fragments in the order
+// of their first sample. λ1 λ2: the screen-space barycentrics at the shading
+// position — the pixel centre if the triangle covers it, else its first
+// covered sample (like centroid sampling).
+struct TileFragments {
+    std::vector<std::uint16_t> x, y;  // tile-relative pixel
+    std::vector<std::uint32_t> triangle;
+    std::vector<float> lambda1, lambda2;
+    std::size_t count = 0;
+    void reserve(int tile_side);
+};
+
+// Rasterizes one triangle's samples into the part of the tile it covers:
+// int64 edge functions, the top-left rule per sample, depth test LESS per
+// sample. counters.fragments counts covered samples.
+void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters);
+
+// λ1, λ2 of a set-up triangle at a point given in fixed point (image space).
+inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
+    // As the rasterizer computes them: λ1 = E(2→0)/area, λ2 = E(0→1)/area.
+    return {float(edge_function(t.x[2], t.y[2], t.x[0], t.y[0], px, py)) * t.inv_area,
+            float(edge_function(t.x[0], t.y[0], t.x[1], t.y[1], px, py)) * t.inv_area};
+}
+
+// Whether a fixed-point point is inside a set-up triangle, by the top-left rule.
+bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
+
+// Lists the fragments of a width × height tile from its samples and sets
+// samples.fragment. triangle_of(id) gives the RasterTriangle of a triangle id.
+template <class TriangleOf>
+void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
+    out.count = 0;
+    for (int y = 0; y < rect.height(); ++y) {
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * samples.side + x);
+            const std::size_t pixel_fragments = out.count;
+            for (int s = 0; s < kMsaaSamples; ++s) {
+                samples.fragment[first + s] = -1;
+                if (!(samples.depth[first + s] < 1.0f)) continue;
+                const std::uint32_t id = samples.triangle[first + s];
+                std::size_t k = pixel_fragments;
+                while (k < out.count && out.triangle[k] != id) ++k;
+                samples.fragment[first + s] = std::int32_t(k);
+                if (k < out.count) continue;
+                // A new triangle in this pixel: shade at the centre if it covers it, else here.
+                const RasterTriangle& t = triangle_of(id);
+                const std::int64_t cx = std::int64_t(rect.x0 + x) * kSubpixelScale + kSubpixelScale / 2;
+                const std::int64_t cy = std::int64_t(rect.y0 + y) * kSubpixelScale + kSubpixelScale / 2;
+                const bool centre = covers_point(t, cx, cy);
+                const auto [l1, l2] =
+                    centre ? screen_barycentrics(t, cx, cy)
+                           : screen_barycentrics(t, cx + kSampleOffsetX[s], cy + kSampleOffsetY[s]);
+                out.x[k] = std::uint16_t(x), out.y[k] = std::uint16_t(y), out.triangle[k] = id;
+                out.lambda1[k] = l1, out.lambda2[k] = l2;
+                ++out.count;
+            }
+        }
+    }
+}
+
+}  // namespace tessera::raster
