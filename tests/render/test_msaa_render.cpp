@@ -31,12 +31,19 @@ Scene covering_triangle_scene() {
 
 TEST_CASE("4x MSAA: an image whose every pixel is inside one triangle is the no-MSAA image, bit for bit") {
     Scene scene = covering_triangle_scene();
-    Renderer renderer;
+    RenderSettings settings;
+    parse_aov_list("depth,normal,position", settings.aovs);
+    Renderer renderer(settings);
     const RenderedImage one = renderer.render(scene);
     scene.msaa = 4;
     const RenderedImage& four = renderer.render(scene);
     CHECK(four.display == one.display);
     CHECK(four.radiance == one.radiance);
+    // AOVs take sample 0's fragment: here the pixel's one fragment, shaded at its centre.
+    REQUIRE(one.aov.position.size() == 3u * 24 * 16);
+    CHECK(four.aov.depth == one.aov.depth);
+    CHECK(four.aov.normal == one.aov.normal);
+    CHECK(four.aov.position == one.aov.position);
     CHECK(one.display[0] != 25);  // really covered: not the clear colour (0.1 → 26 or 25)
 }
 
