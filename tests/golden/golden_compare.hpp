@@ -14,6 +14,12 @@ namespace tessera::test {
 inline constexpr float kGoldenFailThreshold = 2.5f / 255.0f;  // any channel further off fails
 inline constexpr float kGoldenWarnThreshold = 1.5f / 255.0f;  // off by 2 steps: counted
 inline constexpr double kGoldenMaxWarnFraction = 0.001;       // at most 0.1% of pixels may be counted
+// A mirror-like GGX glint (roughness 0.05, highlight peak ~5e4) amplifies one
+// rounding difference into a few 8-bit steps: in a scene with hundreds of
+// lights (many_lights) the sanitizer build's code generation moves single
+// pixels by 3 steps. So a few pixels may pass the fail threshold, by a bounded amount.
+inline constexpr double kGoldenMaxFailFraction = 1e-5;        // 9 pixels of a 1280×720 image
+inline constexpr float kGoldenMaxError = 8.5f / 255.0f;       // and never more than 8 steps
 
 struct GoldenResult {
     bool passed = false;

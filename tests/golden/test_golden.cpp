@@ -48,3 +48,25 @@ TEST_CASE("every sample-model scene matches its golden image") {
         }
     }
 }
+
+// The comparison itself: what it lets through and what it catches.
+TEST_CASE("golden comparison: a few pixels a few steps off pass, more or further fail") {
+    Renderer renderer;
+    const RenderedImage rendered = renderer.render(load_scene_file(test::scene_path("spheres.toml")));
+    const std::filesystem::path golden = test::source_dir() / "golden" / "spheres.png";
+    const std::filesystem::path failures = std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures";
+    const auto shifted = [&](int pixels, int steps) {
+        RenderedImage image = rendered;
+        for (int p = 0; p < pixels; ++p) {
+            std::uint8_t& value = image.display[std::size_t(p) * 3 * 997 % image.display.size() / 3 * 3];
+            value = std::uint8_t(value >= 128 ? value - steps : value + steps);
+        }
+        const auto result = test::compare_with_golden(image, golden, failures, "comparison_check");
+        MESSAGE(pixels << " pixels " << steps << " steps: " << result.message);
+        return result.passed;
+    };
+    CHECK(shifted(0, 0));
+    CHECK(shifted(3, 3));         // a glint or two
+    CHECK_FALSE(shifted(20, 3));  // more pixels than kGoldenMaxFailFraction allows
+    CHECK_FALSE(shifted(1, 20));  // one pixel, but beyond kGoldenMaxError
+}
