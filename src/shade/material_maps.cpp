@@ -101,8 +101,9 @@ public:
     }
     // The scratch channels were changed in place: the next sample() must refetch.
     void forget() { sampled_ = -1; }
-    const float* channel(int c) const {
-        const std::vector<float>* channels[] = {&scratch_.r, &scratch_.g, &scratch_.b, &scratch_.a};
+    // The sampled values of channel c; writable, for decoding in place (then forget()).
+    float* channel(int c) const {
+        std::vector<float>* channels[] = {&scratch_.r, &scratch_.g, &scratch_.b, &scratch_.a};
         return channels[c]->data();
     }
     std::size_t count() const { return count_; }
@@ -167,8 +168,7 @@ void apply_run(simd::Isa isa, std::span<const std::shared_ptr<const texture::Tex
     // Last: the power changes the sampled values in place.
     if (m.albedo_map.present()) {
         sampler.sample(m.albedo_map, 2);
-        float* texel[] = {const_cast<float*>(sampler.channel(0)), const_cast<float*>(sampler.channel(1)),
-                          const_cast<float*>(sampler.channel(2))};
+        float* texel[] = {sampler.channel(0), sampler.channel(1), sampler.channel(2)};
         if (m.albedo_decode == AlbedoDecode::pow_2_2_after_filter) {
             pow_2_2(isa, n, texel[0], texel[1], texel[2]);
             sampler.forget();
