@@ -252,14 +252,11 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
         tbb::parallel_for(std::size_t(0), mesh.positions.size(), kRun, [&](std::size_t first) {
             const std::size_t count = std::min(kRun, mesh.positions.size() - first);
             const std::size_t base = first_vertex[o] + first;
-            geometry::shade_vertices(mesh, first, object.model, view_projection, {vertices.data() + base, count});
+            // The viewport transform too, once per vertex rather than once per triangle corner.
+            geometry::run_vertex_stage(isa, mesh, first, object.model, view_projection, guard, viewport,
+                                       {{vertices.data() + base, count}, outcodes.data() + base, screen.data() + base});
             if (!mesh.tangents.empty())
                 geometry::transform_tangents(mesh, first, object.model, {tangents.data() + base, count});
-            for (std::size_t v = base; v < base + count; ++v) {
-                outcodes[v] = geometry::outcode(vertices[v], guard);
-                // The viewport transform, once per vertex rather than once per triangle corner.
-                if (!(outcodes[v] & geometry::kClipPlaneBits)) screen[v] = geometry::to_screen(vertices[v].clip_pos, viewport);
-            }
         });
     });
 }

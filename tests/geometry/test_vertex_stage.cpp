@@ -1,5 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "geometry/vertex_stage.hpp"
@@ -31,4 +36,80 @@ TEST_CASE("shade_vertices computes WorldPos, clip position and normal as the ref
     for (int i = 0; i < 4; ++i) CHECK(out.clip_pos[i] == doctest::Approx(expected[i]));
     CHECK(out.normal.z == doctest::Approx(1.0f));
     CHECK(out.uv.x == 0.25f);
+}
+
+namespace {
+
+bool same_bits(const void* a, const void* b, std::size_t bytes) { return std::memcmp(a, b, bytes) == 0; }
+
+}  // namespace
+
+// The vertex kernels compute, a vector of vertices at a time, what shade_vertices,
+// outcode and to_screen compute one by one: the same bits for every ISA,
+// including vertices behind the camera, past the guard band, and non-finite ones.
+TEST_CASE("the vertex stage gives the scalar result bit for bit with every ISA's kernel") {
+    std::mt19937 rng(2026);
+    std::uniform_real_distribution<float> coord(-3.0f, 3.0f), unit(0.0f, 1.0f);
+    Mesh mesh;
+    constexpr std::size_t kVertices = 4099;  // not a multiple of any lane count
+    for (std::size_t i = 0; i < kVertices; ++i) {
+        glm::vec3 p(coord(rng), coord(rng), coord(rng) - 4.0f);
+        if (i % 13 == 0) p *= 1000.0f;  // far outside: guard-band and far-plane outcodes
+        if (i % 17 == 0) p.z = 6.0f;    // behind the camera
+        glm::vec3 n(coord(rng), coord(rng), coord(rng));
+        if (i % 101 == 0) n.x = std::numeric_limits<float>::quiet_NaN();
+        if (i % 103 == 0) p.y = std::numeric_limits<float>::infinity();
+        mesh.positions.push_back(p);
+        mesh.normals.push_back(n);
+        mesh.uvs.push_back({unit(rng), unit(rng)});
+    }
+    const glm::mat4 model = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, -0.2f, 0.1f)), 0.7f,
+                                                   glm::normalize(glm::vec3(1, 2, 3))),
+                                       glm::vec3(1.5f, 0.5f, 2.0f));
+    const glm::mat4 view_projection =
+        glm::perspective(glm::radians(50.0f), 16.0f / 9.0f, 0.1f, 100.0f) *
+        glm::lookAt(glm::vec3(0.5f, 0.2f, 3.0f), glm::vec3(0, 0, -4), glm::vec3(0, 1, 0));
+    const geometry::Viewport viewport{1280, 720};
+    const geometry::GuardBand guard(viewport.width, viewport.height);
+
+    for (const bool with_uvs : {true, false}) {
+        CAPTURE(with_uvs);
+        if (!with_uvs) mesh.uvs.clear();
+        // From vertex 5 on, so runs start off any alignment.
+        const std::size_t first = 5, count = kVertices - first;
+        std::vector<geometry::ShadedVertex> expected(count);
+        std::vector<std::uint32_t> expected_codes(count);
+        std::vector<geometry::ScreenVertex> expected_screen(count);
+        geometry::run_vertex_stage(simd::Isa::scalar, mesh, first, model, view_projection, guard, viewport,
+                                   {expected, expected_codes.data(), expected_screen.data()});
+        std::size_t clipped = 0, not_finite = 0;
+        for (std::uint32_t code : expected_codes)
+            clipped += (code & geometry::kClipPlaneBits) != 0, not_finite += code == geometry::kNotFinite;
+        REQUIRE(clipped > 100);  // the cases above really occur
+        REQUIRE(not_finite > 50);
+        REQUIRE(clipped < count / 2);
+
+        for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+            CAPTURE(simd::isa_name(isa));
+            if (!simd::isa_supported(isa)) {
+                MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+                continue;
+            }
+            std::vector<geometry::ShadedVertex> vertices(count);
+            std::vector<std::uint32_t> codes(count);
+            std::vector<geometry::ScreenVertex> screen(count);
+            geometry::run_vertex_stage(isa, mesh, first, model, view_projection, guard, viewport,
+                                       {vertices, codes.data(), screen.data()});
+            std::size_t mismatched = 0;
+            for (std::size_t i = 0; i < count; ++i) {
+                bool ok = same_bits(&vertices[i], &expected[i], sizeof(geometry::ShadedVertex)) &&
+                          codes[i] == expected_codes[i];
+                // The screen position means something only where no plane clips the vertex.
+                if (!(expected_codes[i] & (geometry::kClipPlaneBits | geometry::kNotFinite)))
+                    ok = ok && same_bits(&screen[i], &expected_screen[i], sizeof(geometry::ScreenVertex));
+                mismatched += !ok;
+            }
+            CHECK(mismatched == 0);
+        }
+    }
 }

@@ -1,0 +1,119 @@
+// The vertex stage over vectors of vertices (vertex_kernels.hpp), compiled once
+// per ISA. Vertices are stored one after another (xyz, xyz, ...); a run is moved
+// through small per-lane arrays so that the arithmetic — two matrix products, the
+// normal matrix, outcodes and the viewport transform — runs a vector at a time.
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+#include "simd/kernel_prelude.hpp"
+
+#include "geometry/clipper.hpp"
+#include "geometry/vertex_kernels.hpp"
+#include "geometry/viewport.hpp"
+
+namespace tessera::geometry {
+namespace {
+
+using Arch = TESSERA_SIMD_ARCH;
+using Float = xsimd::batch<float, Arch>;
+using Int = xsimd::batch<std::int32_t, Arch>;
+constexpr std::size_t kLanes = Float::size;
+
+struct Vec4 {
+    Float x, y, z, w;
+};
+
+// Row r of glm's mat4 · vec4(p, 1): (m0·x + m1·y) + (m2·z + m3·1), glm's order.
+Float affine_row(const float* m, int r, const Float& x, const Float& y, const Float& z) {
+    return (Float(m[r]) * x + Float(m[4 + r]) * y) + (Float(m[8 + r]) * z + Float(m[12 + r]));
+}
+// Row r of glm's mat3 · vec3: m0·x + m1·y + m2·z, left to right.
+Float linear_row(const float* m, int r, const Float& x, const Float& y, const Float& z) {
+    return Float(m[r]) * x + Float(m[3 + r]) * y + Float(m[6 + r]) * z;
+}
+
+// An outcode bit where `outside` holds, as float bits so every mask stays a float mask.
+Float bit_if(const xsimd::batch_bool<float, Arch>& outside, std::uint32_t bit) {
+    return xsimd::select(outside, xsimd::bitwise_cast<Float>(Int(std::int32_t(bit))), Float(0.0f));
+}
+
+// outcode() of clipper.cpp, lane by lane; a non-finite normal or position gives kNotFinite alone.
+Int outcodes(const Vec4& p, const Float& nx, const Float& ny, const Float& nz, const Float& guard_x,
+             const Float& guard_y) {
+    const auto finite = xsimd::isfinite(p.x) & xsimd::isfinite(p.y) & xsimd::isfinite(p.z) & xsimd::isfinite(p.w) &
+                        xsimd::isfinite(nx) & xsimd::isfinite(ny) & xsimd::isfinite(nz);
+    const Float gx = guard_x * p.w, gy = guard_y * p.w;
+    const Float code = bit_if(p.z < -p.w, kOutsideNear) | bit_if(p.z > p.w, kOutsideFar) |
+                       bit_if(p.x > gx, kOutsideGuardRight) | bit_if(p.x < -gx, kOutsideGuardLeft) |
+                       bit_if(p.y > gy, kOutsideGuardTop) | bit_if(p.y < -gy, kOutsideGuardBottom) |
+                       bit_if(p.x > p.w, kOutsideViewRight) | bit_if(p.x < -p.w, kOutsideViewLeft) |
+                       bit_if(p.y > p.w, kOutsideViewTop) | bit_if(p.y < -p.w, kOutsideViewBottom);
+    return xsimd::bitwise_cast<Int>(
+        xsimd::select(finite, code, xsimd::bitwise_cast<Float>(Int(std::int32_t(kNotFinite)))));
+}
+
+void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
+    // Per-lane staging: object-space inputs in, results out.
+    alignas(64) float position[3][kLanes], normal[3][kLanes], uv[2][kLanes];
+    alignas(64) float clip[4][kLanes], world[3][kLanes], world_normal[3][kLanes], depth[kLanes], inv_w[kLanes];
+    alignas(64) std::int32_t code[kLanes], screen_x[kLanes], screen_y[kLanes];
+    const Float guard_x(in.guard_x_ndc), guard_y(in.guard_y_ndc), width(in.width), height(in.height);
+    const Float half(0.5f), one(1.0f), subpixel(static_cast<float>(kSubpixelScale));
+
+    for (std::size_t first = 0; first < in.count; first += kLanes) {
+        const std::size_t n = std::min(kLanes, in.count - first);
+        for (std::size_t i = 0; i < kLanes; ++i) {
+            // Lanes past the run compute on zeros and are never written back.
+            const bool live = i < n;
+            for (int c = 0; c < 3; ++c) {
+                position[c][i] = live ? in.positions[3 * (first + i) + c] : 0.0f;
+                normal[c][i] = live ? in.normals[3 * (first + i) + c] : 0.0f;
+            }
+            for (int c = 0; c < 2; ++c) uv[c][i] = live && in.uvs ? in.uvs[2 * (first + i) + c] : 0.0f;
+        }
+        const Float px = Float::load_aligned(position[0]), py = Float::load_aligned(position[1]),
+                    pz = Float::load_aligned(position[2]);
+        const Float wx = affine_row(in.model, 0, px, py, pz), wy = affine_row(in.model, 1, px, py, pz),
+                    wz = affine_row(in.model, 2, px, py, pz);
+        const Vec4 p{affine_row(in.view_projection, 0, wx, wy, wz), affine_row(in.view_projection, 1, wx, wy, wz),
+                     affine_row(in.view_projection, 2, wx, wy, wz), affine_row(in.view_projection, 3, wx, wy, wz)};
+        const Float nx0 = Float::load_aligned(normal[0]), ny0 = Float::load_aligned(normal[1]),
+                    nz0 = Float::load_aligned(normal[2]);
+        const Float nx = linear_row(in.normal_matrix, 0, nx0, ny0, nz0),
+                    ny = linear_row(in.normal_matrix, 1, nx0, ny0, nz0),
+                    nz = linear_row(in.normal_matrix, 2, nx0, ny0, nz0);
+        outcodes(p, nx, ny, nz, guard_x, guard_y).store_aligned(code);
+        // to_screen(): the viewport transform, snapped to 24.8 fixed point
+        // (round to nearest even, as lrintf).
+        const Float w_inv = one / p.w;
+        const Float sx = (p.x * w_inv * half + half) * width, sy = (half - p.y * w_inv * half) * height;
+        xsimd::nearbyint_as_int(sx * subpixel).store_aligned(screen_x);
+        xsimd::nearbyint_as_int(sy * subpixel).store_aligned(screen_y);
+        (p.z * w_inv * half + half).store_aligned(depth);
+        w_inv.store_aligned(inv_w);
+        p.x.store_aligned(clip[0]), p.y.store_aligned(clip[1]), p.z.store_aligned(clip[2]), p.w.store_aligned(clip[3]);
+        wx.store_aligned(world[0]), wy.store_aligned(world[1]), wz.store_aligned(world[2]);
+        nx.store_aligned(world_normal[0]), ny.store_aligned(world_normal[1]), nz.store_aligned(world_normal[2]);
+
+        for (std::size_t i = 0; i < n; ++i) {
+            float* v = out.vertices + 12 * (first + i);
+            v[0] = clip[0][i], v[1] = clip[1][i], v[2] = clip[2][i], v[3] = clip[3][i];
+            v[4] = world[0][i], v[5] = world[1][i], v[6] = world[2][i];
+            v[7] = world_normal[0][i], v[8] = world_normal[1][i], v[9] = world_normal[2][i];
+            v[10] = uv[0][i], v[11] = uv[1][i];
+            out.outcodes[first + i] = std::uint32_t(code[i]);
+            std::int32_t* s = out.screen + 4 * (first + i);
+            s[0] = screen_x[i], s[1] = screen_y[i];
+            s[2] = std::bit_cast<std::int32_t>(depth[i]), s[3] = std::bit_cast<std::int32_t>(inv_w[i]);
+        }
+    }
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(shade_vertex_run)(const VertexRunInput& in, const VertexRunOutput& out) {
+    shade_vertex_run(in, out);
+}
+
+}  // namespace tessera::geometry
