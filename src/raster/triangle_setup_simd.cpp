@@ -7,6 +7,8 @@
 
 #include "simd/kernel_prelude.hpp"
 
+#include "simd/hardware_gather.hpp"
+
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
@@ -37,8 +39,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         Int x[3], y[3];
         for (int k = 0; k < 3; ++k) {
             const Int at = Int::load_unaligned(in.ref[k] + i) * Int(4);
-            x[k] = Int::gather(in.screen, at);
-            y[k] = Int::gather(in.screen, at + one);
+            x[k] = simd::hardware_gather(in.screen, at);
+            y[k] = simd::hardware_gather(in.screen, at + one);
         }
         const Int min_x = xsimd::min(x[0], xsimd::min(x[1], x[2])), max_x = xsimd::max(x[0], xsimd::max(x[1], x[2]));
         const Int min_y = xsimd::min(y[0], xsimd::min(y[1], y[2])), max_y = xsimd::max(y[0], xsimd::max(y[1], y[2]));

@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
+#include "simd/hardware_gather.hpp"
 
 #include "simd/lane_padding.hpp"
 #include "texture/texture.hpp"
@@ -41,19 +42,7 @@ Texels<N> lerp(const Texels<N>& t0, const Texels<N>& t1, const Batch& weight) {
     return result;
 }
 
-// base[index[lane]] per lane with the hardware gather where there is one
-// (xsimd 8.1's Batch::gather loads lane by lane).
-Batch gather(const float* base, const IntBatch& index) {
-#if defined(__AVX512F__)
-    static_assert(Batch::size == 16);
-    return _mm512_i32gather_ps(index, base, 4);
-#elif defined(__AVX2__)
-    static_assert(Batch::size == 8);
-    return _mm256_i32gather_ps(base, index, 4);
-#else
-    return Batch::gather(base, index);
-#endif
-}
+Batch gather(const float* base, const IntBatch& index) { return simd::hardware_gather(base, index); }
 
 // min(max(x, lo), hi): the hardware max returns its second operand for NaN, so NaN → lo.
 Batch clamp_nan_low(const Batch& x, const Batch& lo, const Batch& hi) { return xsimd::min(xsimd::max(x, lo), hi); }
