@@ -183,6 +183,12 @@ struct Renderer::Frame {
         return chunks[id >> render::kChunkIdShift].assembled.triangles[id & render::kChunkIndexMask];
     }
     void describe_for_textures(const raster::RasterTriangle& t, const Mesh& mesh, shade::TriangleCorners& corners) const;
+    // A triangle that has just won a depth test will likely be gathered: its
+    // corners are fetched now, while the rest of the tile rasterizes, instead
+    // of stalling the gather (they lie scattered through the frame's vertices).
+    void prefetch_corners(const render::Chunk& chunk, const raster::RasterTriangle& t) const {
+        for (int k = 0; k < 3; ++k) __builtin_prefetch(&chunk.vertex(t.vertex[k], vertices));
+    }
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -381,7 +387,10 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 __builtin_prefetch(ahead + 63);  // a record may straddle two cache lines
             }
             const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | bin[i];
-            raster::rasterize_triangle(isa, chunk.assembled.triangles[bin[i]], id, rect, s.raster, s.counters);
+            const raster::RasterTriangle& t = chunk.assembled.triangles[bin[i]];
+            const std::uint64_t passed = s.counters.depth_passed;
+            raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
         }
     }
     const auto t1 = Clock::now();
@@ -448,7 +457,10 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
         for (const std::uint32_t index : chunk.bins.tile(tile)) {
             if (!reset) s.samples.reset(grid.tile_size), reset = true;
             const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
-            raster::rasterize_triangle_msaa(chunk.assembled.triangles[index], id, rect, s.samples, s.counters);
+            const raster::RasterTriangle& t = chunk.assembled.triangles[index];
+            const std::uint64_t passed = s.counters.depth_passed;
+            raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
         }
     }
     const auto t1 = Clock::now();
