@@ -177,6 +177,9 @@ struct Renderer::Frame {
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
     void render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    template <class Gather, class Resolve>
+    void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, const raster::TileRect& rect, bool drawn,
+                           Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
     const raster::RasterTriangle& triangle_of(std::uint32_t id) const {
@@ -393,26 +396,76 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
             if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
         }
     }
+    shade_and_resolve(
+        scene, clear, rect, s.counters.depth_passed != passed_before, t0, s,
+        [&] {  // every visible pixel once
+            return shade::gather_surface_points(
+                s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
+                s.fragments, s.material_runs);
+        },
+        [&](std::size_t count, const shade::RadianceOutputs& shaded) {
+            image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+            if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
+        });
+}
+
+// render_tile with 4 samples per pixel: depth and triangle per sample, one
+// fragment per pixel and visible triangle, pixels the mean of their samples.
+void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
+    const raster::TileRect rect = grid.rect(tile);
+    const auto t0 = Clock::now();
+    const std::uint64_t passed_before = s.counters.depth_passed;
+    bool reset = false;
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+        const render::Chunk& chunk = chunks[c];
+        for (const std::uint32_t index : chunk.bins.tile(tile)) {
+            if (!reset) s.samples.reset(grid.tile_size), reset = true;
+            const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
+            const raster::RasterTriangle& t = chunk.assembled.triangles[index];
+            const std::uint64_t passed = s.counters.depth_passed;
+            raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
+        }
+    }
+    shade_and_resolve(
+        scene, clear, rect, s.counters.depth_passed != passed_before, t0, s,
+        [&] {  // one fragment per pixel and visible triangle
+            raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
+                return triangle_of(id);
+            }, s.sample_fragments);
+            return shade::gather_surface_points(
+                s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
+                s.material_runs);
+        },
+        [&](std::size_t count, const shade::RadianceOutputs& shaded) {
+            image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
+            if (!image.aov.empty())
+                image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
+        });
+}
+
+// The tail both tile paths share, from the end of rasterization (begun at
+// raster_start): gather the visible fragments, shade them, resolve them into
+// the images, and time each step; a tile nothing was drawn on is only cleared.
+// gather() fills s.fragments and returns their count; resolve(count, shaded)
+// writes the pixels and AOVs.
+template <class Gather, class Resolve>
+void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearValues& clear,
+                                        const raster::TileRect& rect, bool drawn, Clock::time_point raster_start,
+                                        WorkerScratch& s, Gather&& gather, Resolve&& resolve) {
     const auto t1 = Clock::now();
-    if (s.counters.depth_passed == passed_before) {  // nothing drawn here: background only
+    s.rasterize_ms += ms_between(raster_start, t1);
+    if (!drawn) {  // background only
         image::clear_tile(rect, clear, image);
         s.resolve_ms += ms_between(t1, Clock::now());
-        s.rasterize_ms += ms_between(t0, t1);
         return;
     }
-
-    // Shade every visible pixel once.
-    const std::size_t count = shade::gather_surface_points(
-        s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
-        s.material_runs);
+    const std::size_t count = gather();
     const shade::RadianceOutputs shaded = s.fragments.outputs();
     shade_tile(scene, count, s);
     const auto t2 = Clock::now();
-
-    image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
-    if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
+    resolve(count, shaded);
     const auto t3 = Clock::now();
-    s.rasterize_ms += ms_between(t0, t1);
     s.shade_ms += ms_between(t1, t2);
     s.resolve_ms += ms_between(t2, t3);
 }
@@ -443,48 +496,6 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
     }
     s.fragments_shaded += count;
     return count;
-}
-
-// render_tile with 4 samples per pixel: depth and triangle per sample, one
-// fragment per pixel and visible triangle, pixels the mean of their samples.
-void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
-    const raster::TileRect rect = grid.rect(tile);
-    const auto t0 = Clock::now();
-    const std::uint64_t passed_before = s.counters.depth_passed;
-    bool reset = false;
-    for (std::size_t c = 0; c < chunk_count; ++c) {
-        const render::Chunk& chunk = chunks[c];
-        for (const std::uint32_t index : chunk.bins.tile(tile)) {
-            if (!reset) s.samples.reset(grid.tile_size), reset = true;
-            const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
-            const raster::RasterTriangle& t = chunk.assembled.triangles[index];
-            const std::uint64_t passed = s.counters.depth_passed;
-            raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
-            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
-        }
-    }
-    const auto t1 = Clock::now();
-    if (s.counters.depth_passed == passed_before) {  // nothing drawn here: background only
-        image::clear_tile(rect, clear, image);
-        s.resolve_ms += ms_between(t1, Clock::now());
-        s.rasterize_ms += ms_between(t0, t1);
-        return;
-    }
-    raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
-        return triangle_of(id);
-    }, s.sample_fragments);
-    const std::size_t count = shade::gather_surface_points(
-        s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
-    const shade::RadianceOutputs shaded = s.fragments.outputs();
-    shade_tile(scene, count, s);
-    const auto t2 = Clock::now();
-
-    image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
-    if (!image.aov.empty()) image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
-    const auto t3 = Clock::now();
-    s.rasterize_ms += ms_between(t0, t1);
-    s.shade_ms += ms_between(t1, t2);
-    s.resolve_ms += ms_between(t2, t3);
 }
 
 }  // namespace tessera
