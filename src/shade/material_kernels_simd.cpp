@@ -8,30 +8,13 @@
 #include "simd/kernel_prelude.hpp"
 
 #include "shade/material_kernels.hpp"
+#include "shade/vec3_batch.hpp"
 #include "simd/lane_padding.hpp"
 
 namespace tessera::shade {
 namespace {
 
-using Arch = TESSERA_SIMD_ARCH;
-using Batch = xsimd::batch<float, Arch>;
-using Mask = xsimd::batch_bool<float, Arch>;
 static_assert(simd::kLanePadding % Batch::size == 0, "padding must hold whole vectors");
-
-struct Vec3 {
-    Batch x, y, z;
-};
-Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3 operator*(const Vec3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
-Batch dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-Vec3 select(const Mask& m, const Vec3& a, const Vec3& b) {
-    return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
-}
-Vec3 normalize(const Vec3& a) { return a * (Batch(1.0f) / xsimd::sqrt(dot(a, a))); }
 
 // Lanes where v has a usable direction (as normalize_if_usable in material_maps.cpp), and v normalized there.
 Mask normalize_if_usable(Vec3& v) {
@@ -41,9 +24,7 @@ Mask normalize_if_usable(Vec3& v) {
     return usable;
 }
 
-Vec3 load3(const float* const a[3], std::size_t i) {
-    return {xsimd::load_unaligned(a[0] + i), xsimd::load_unaligned(a[1] + i), xsimd::load_unaligned(a[2] + i)};
-}
+Vec3 load3(const float* const a[3], std::size_t i) { return load3(a[0], a[1], a[2], i); }
 
 Vec3 apply_frame(const Vec3& t, const Vec3& b, const Vec3& n, const Vec3& tangent_normal) {
     return normalize(t * tangent_normal.x + b * tangent_normal.y + n * tangent_normal.z);
@@ -56,7 +37,7 @@ Vec3 frame_learnopengl(const Vec3& tangent_normal, const Vec3& n, const Vec3& dp
     const Mask t_ok = normalize_if_usable(t);
     Vec3 b = cross(n, t);
     const Mask b_ok = normalize_if_usable(b);
-    return select(t_ok & b_ok, apply_frame(t, Vec3{-b.x, -b.y, -b.z}, n, tangent_normal), n);
+    return select(t_ok & b_ok, apply_frame(t, -b, n, tangent_normal), n);
 }
 
 Vec3 frame_gltf(const Vec3& tangent_normal, const Vec3& n, const Vec3& dp_dx, const Vec3& dp_dy, const Batch& du_dx,
@@ -69,7 +50,7 @@ Vec3 frame_gltf(const Vec3& tangent_normal, const Vec3& n, const Vec3& dp_dx, co
     const Mask t_ok = normalize_if_usable(t);
     Vec3 b = cross(n, t);
     const Mask b_ok = normalize_if_usable(b);
-    b = select(dot(b, dp_dv) > Batch(0.0f), Vec3{-b.x, -b.y, -b.z}, b);
+    b = select(dot(b, dp_dv) > Batch(0.0f), -b, b);
     return select(t_ok & b_ok, apply_frame(t, b, n, tangent_normal), n);
 }
 
@@ -101,8 +82,7 @@ void TESSERA_SIMD_ENTRY(perturb_normals)(const NormalMapBatch& in, DerivedTangen
         tangent_normal.x *= Batch(in.scale), tangent_normal.y *= Batch(in.scale);
         const Vec3 n = normalize(load3(in.normal, i));
         const Batch w = xsimd::load_unaligned(in.tangent[3] + i);
-        const Vec3 stored = {xsimd::load_unaligned(in.tangent[0] + i), xsimd::load_unaligned(in.tangent[1] + i),
-                             xsimd::load_unaligned(in.tangent[2] + i)};
+        const Vec3 stored = load3(in.tangent, i);  // the first three of x, y, z, w
         const Batch du_dx = xsimd::load_unaligned(in.duv_dx[0] + i), dv_dx = xsimd::load_unaligned(in.duv_dx[1] + i);
         const Batch du_dy = xsimd::load_unaligned(in.duv_dy[0] + i), dv_dy = xsimd::load_unaligned(in.duv_dy[1] + i);
         const Vec3 dp_dx = load3(in.dp_dx, i), dp_dy = load3(in.dp_dy, i);

@@ -16,35 +16,16 @@
 
 #include "shade/pbr_reference.hpp"
 #include "shade/shade_kernels.hpp"
+#include "shade/vec3_batch.hpp"
 
 namespace tessera::shade {
 namespace {
 
-using Arch = TESSERA_SIMD_ARCH;
-using Batch = xsimd::batch<float, Arch>;
 static_assert(kLanePadding % Batch::size == 0, "padding must hold whole vectors");
-
-struct Vec3 {
-    Batch x, y, z;
-};
-
-Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3 operator*(const Vec3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
-Batch dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-
-// 1/sqrt, not xsimd::rsqrt: that does not compile for AVX-512 in xsimd 8.1 and
-// is only 12 bits on SSE/AVX2.
-Batch inverse_length(const Vec3& a) { return Batch(1.0f) / xsimd::sqrt(dot(a, a)); }
-Vec3 normalize(const Vec3& a) { return a * inverse_length(a); }
 
 // max(x, 0) with x first: the hardware max returns the second operand for NaN,
 // so a NaN dot product becomes 0 rather than spreading.
 Batch max0(const Batch& x) { return xsimd::max(x, Batch(0.0f)); }
-
-Vec3 load3(const float* x, const float* y, const float* z, std::size_t i) {
-    return {xsimd::load_unaligned(x + i), xsimd::load_unaligned(y + i), xsimd::load_unaligned(z + i)};
-}
 
 // The GGX denominator's square root, n_dot_h²·(a² − 1) + 1; distribution_ggx is
 // a2 / (π·denom²). The caller folds that division into the specular one.

@@ -1,0 +1,50 @@
+// 3-vectors of xsimd batches, one vector per lane, and the vector math the
+// shading kernels share (shade_kernels_simd.cpp, material_kernels_simd.cpp).
+// Compiled once per ISA with its includers (TESSERA_SIMD_ARCH), so everything
+// is in an anonymous namespace: the sse4/avx2/avx512 copies never meet at link
+// time (a shared inline function would be one definition built three ways,
+// and the linker would keep any one of them). `inline` here only keeps the
+// helpers a kernel does not use from warning.
+#pragma once
+
+#include <cstddef>
+
+#include "simd/kernel_prelude.hpp"
+
+namespace tessera::shade {
+namespace {
+
+using Arch = TESSERA_SIMD_ARCH;
+using Batch = xsimd::batch<float, Arch>;
+using Mask = xsimd::batch_bool<float, Arch>;
+
+struct Vec3 {
+    Batch x, y, z;
+};
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
+inline Vec3 operator*(const Vec3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
+inline Batch dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// a where m is set, b elsewhere, per lane.
+inline Vec3 select(const Mask& m, const Vec3& a, const Vec3& b) {
+    return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
+}
+
+// 1/sqrt, not xsimd::rsqrt: that does not compile for AVX-512 in xsimd 8.1 and
+// is only 12 bits on SSE/AVX2.
+inline Batch inverse_length(const Vec3& a) { return Batch(1.0f) / xsimd::sqrt(dot(a, a)); }
+inline Vec3 normalize(const Vec3& a) { return a * inverse_length(a); }
+
+// Lanes i .. i + Batch::size of three planes.
+inline Vec3 load3(const float* x, const float* y, const float* z, std::size_t i) {
+    return {xsimd::load_unaligned(x + i), xsimd::load_unaligned(y + i), xsimd::load_unaligned(z + i)};
+}
+
+}  // namespace
+}  // namespace tessera::shade
