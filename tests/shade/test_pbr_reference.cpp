@@ -29,6 +29,21 @@ double schlick_ggx(double n_dot_x, double roughness) {
     return n_dot_x / (n_dot_x * (1.0 - k) + k);
 }
 
+// The set-up of the 45° tests: camera and light mirrored at 45° about N, so
+// H = N and N·V = N·L = H·V = c = 1/√2. Returns the BRDF's k_D·albedo/π + specular
+// there; the light's contribution is that · radiance · c.
+glm::dvec3 brdf_mirrored_45(const Material& material) {
+    const glm::dvec3 albedo(material.albedo);
+    const double metallic = material.metallic, c = std::sqrt(0.5);
+    const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + albedo * metallic;
+    const double ndf = 1.0 / (kPiD * alpha2(material.roughness));
+    const double g = schlick_ggx(c, material.roughness) * schlick_ggx(c, material.roughness);
+    const glm::dvec3 f = f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0);
+    const glm::dvec3 k_d = (1.0 - f) * (1.0 - metallic);
+    const glm::dvec3 specular = ndf * g * f / (4.0 * c * c + 0.0001);
+    return k_d * albedo / kPiD + specular;
+}
+
 void check_vec3(const glm::vec3& actual, const glm::dvec3& expected, double rel = 1e-5) {
     for (int c = 0; c < 3; ++c) {
         CAPTURE(c);
@@ -137,15 +152,10 @@ TEST_CASE("shade_pbr: camera and light mirrored at 45° so H = N") {
     const Material material{.albedo = glm::vec3(0.9f, 0.6f, 0.3f), .metallic = 0.3f, .roughness = 0.6f, .ao = 1.0f};
 
     const glm::dvec3 albedo(material.albedo);
-    const double metallic = material.metallic, c = std::sqrt(0.5);
-    const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + albedo * metallic;
-    const double ndf = 1.0 / (kPiD * alpha2(material.roughness));
-    const double g = schlick_ggx(c, material.roughness) * schlick_ggx(c, material.roughness);
-    const glm::dvec3 f = f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0);
-    const glm::dvec3 k_d = (1.0 - f) * (1.0 - metallic);
-    const glm::dvec3 specular = ndf * g * f / (4.0 * c * c + 0.0001);
+    const double c = std::sqrt(0.5);
     const glm::dvec3 radiance = glm::dvec3(light.color) / 8.0;
-    const glm::dvec3 expected = 0.03 * albedo * double(material.ao) + (k_d * albedo / kPiD + specular) * radiance * c;
+    const glm::dvec3 direct = brdf_mirrored_45(material) * radiance * c;
+    const glm::dvec3 expected = 0.03 * albedo * double(material.ao) + direct;
 
     const double tolerance = ggx_peak_tolerance(alpha2(material.roughness));
     const std::vector<Light> lights{light};
@@ -153,8 +163,7 @@ TEST_CASE("shade_pbr: camera and light mirrored at 45° so H = N") {
 
     // Lights add: the same light twice doubles the direct part.
     const std::vector<Light> twice{light, light};
-    check_vec3(shade_pbr(world_pos, normal, material, cam_pos, twice),
-               expected + (k_d * albedo / kPiD + specular) * radiance * c, tolerance);
+    check_vec3(shade_pbr(world_pos, normal, material, cam_pos, twice), expected + direct, tolerance);
 }
 
 TEST_CASE("shade_pbr: a directional light arrives along −direction, unattenuated") {
@@ -169,15 +178,8 @@ TEST_CASE("shade_pbr: a directional light arrives along −direction, unattenuat
     const Material material{.albedo = glm::vec3(0.9f, 0.6f, 0.3f), .metallic = 0.3f, .roughness = 0.6f, .ao = 0.5f};
 
     const glm::dvec3 albedo(material.albedo);
-    const double metallic = material.metallic, c = std::sqrt(0.5);
-    const glm::dvec3 f0 = glm::dvec3(0.04) * (1.0 - metallic) + albedo * metallic;
-    const double ndf = 1.0 / (kPiD * alpha2(material.roughness));
-    const double g = schlick_ggx(c, material.roughness) * schlick_ggx(c, material.roughness);
-    const glm::dvec3 f = f0 + (1.0 - f0) * std::pow(1.0 - c, 5.0);
-    const glm::dvec3 k_d = (1.0 - f) * (1.0 - metallic);
-    const glm::dvec3 specular = ndf * g * f / (4.0 * c * c + 0.0001);
-    const glm::dvec3 expected =
-        0.03 * albedo * double(material.ao) + (k_d * albedo / kPiD + specular) * glm::dvec3(sun.color) * c;
+    const double c = std::sqrt(0.5);
+    const glm::dvec3 expected = 0.03 * albedo * double(material.ao) + brdf_mirrored_45(material) * glm::dvec3(sun.color) * c;
 
     const std::vector<Light> lights{sun};
     const double tolerance = ggx_peak_tolerance(alpha2(material.roughness));
