@@ -35,6 +35,21 @@ Renderer& renderer() {
     return instance;
 }
 
+// A scene a loader accepted: it must pass validate_scene too (`refused` says
+// which promise broke if not), and render into a frame of its size.
+void check_accepted_scene(Scene& scene, const char* refused) {
+    try {
+        validate_scene(scene);
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        invariant_failed(refused);
+    }
+    // Small frames keep the fuzzer fast; the camera's aspect ratio follows.
+    scene.width = std::min(scene.width, 32);
+    scene.height = std::min(scene.height, 32);
+    check_frame(renderer().render(scene), scene);
+}
+
 // Reads the fuzz input front to back; past the end it reads zeros.
 class ByteReader {
 public:
@@ -79,16 +94,7 @@ void scene_parser(const std::uint8_t* data, std::size_t size) {
     } catch (const SceneError&) {
         return;  // the expected outcome for most inputs
     }
-    try {
-        validate_scene(scene);
-    } catch (const SceneError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        invariant_failed("parse_scene accepted a scene that validate_scene refuses");
-    }
-    // Small frames keep the fuzzer fast; the camera's aspect ratio follows.
-    scene.width = std::min(scene.width, 32);
-    scene.height = std::min(scene.height, 32);
-    check_frame(renderer().render(scene), scene);
+    check_accepted_scene(scene, "parse_scene accepted a scene that validate_scene refuses");
 }
 
 void gltf_loader(const std::uint8_t* data, std::size_t size) {
@@ -99,15 +105,7 @@ void gltf_loader(const std::uint8_t* data, std::size_t size) {
     } catch (const SceneError&) {
         return;
     }
-    try {
-        validate_scene(scene);
-    } catch (const SceneError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        invariant_failed("make_gltf_scene returned a scene that validate_scene refuses");
-    }
-    scene.width = std::min(scene.width, 32);
-    scene.height = std::min(scene.height, 32);
-    check_frame(renderer().render(scene), scene);
+    check_accepted_scene(scene, "make_gltf_scene returned a scene that validate_scene refuses");
 }
 
 void rasterizer(const std::uint8_t* data, std::size_t size) {
