@@ -8,21 +8,10 @@
 # the median over rounds of each side's median frame time, and the median of the
 # per-round speed-ups.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-scene="${1:-spheres}"
-width="${2:-1280}"
-height="${3:-720}"
-threads="${4:-2}"
-frames="${5:-30}"
+source "$(dirname "$0")/bench_args.sh"
+parse_bench_args bench_scaling "$@"
 rounds="${ROUNDS:-5}"
-build="${BUILD_DIR:-$root/build}"
-
-[ -f "$scene" ] || scene="$root/scenes/${scene%.toml}.toml"
-[ -f "$scene" ] || { echo "bench_scaling: no scene file $scene" >&2; exit 1; }
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-cmake --build "$build" -j"$(nproc)" --target tessera >/dev/null
+build_targets tessera
 
 median_ms() {  # median_ms THREADS: one bench run's median frame time
   "$build/tessera" bench "$scene" --width "$width" --height "$height" --threads "$1" \

@@ -8,23 +8,12 @@
 # noise; the result is the median over rounds of each one's median frame time, and
 # llvmpipe/tessera (above 1: Tessera is faster). Frame times exclude readback and file output.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-scene="${1:-spheres}"
-width="${2:-1280}"
-height="${3:-720}"
-threads="${4:-2}"
-frames="${5:-30}"
+source "$(dirname "$0")/bench_args.sh"
+parse_bench_args race_llvmpipe "$@"
 rounds="${ROUNDS:-3}"
-build="${BUILD_DIR:-$root/build}"
-
-[ -f "$scene" ] || scene="$root/scenes/${scene%.toml}.toml"
-[ -f "$scene" ] || { echo "race_llvmpipe: no scene file $scene" >&2; exit 1; }
 
 # Builds if needed: configure once, then an incremental build of the two binaries.
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-fi
-cmake --build "$build" -j"$(nproc)" --target tessera tessera_gl_reference_cli >/dev/null
+build_targets tessera tessera_gl_reference_cli
 [ -x "$build/tessera_gl_reference" ] || {
   echo "race_llvmpipe: $build/tessera_gl_reference was not built (OpenGL/EGL missing? see tools/install_dependencies.sh)" >&2
   exit 1
