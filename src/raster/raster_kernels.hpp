@@ -1,8 +1,7 @@
 // The rasterizer's SIMD inner loop, compiled once per ISA
-// (tile_rasterizer_simd.cpp) and called by rasterize_triangle() when a
-// triangle's edge functions over its pixel block fit in 32-bit integers: then
-// a vector of int32 lanes tests that many pixel centres at once, exactly as the
-// scalar int64 loop would.
+// (tile_rasterizer_simd.cpp) and called by rasterize_triangle() for a block of
+// pixels whose edge tests fit in 32-bit integers: then a vector of int32 lanes
+// tests that many pixel centres at once, exactly as the scalar int64 loop would.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +14,7 @@ namespace tessera::raster {
 // much so a vector load at the end of a row never leaves the allocation.
 inline constexpr int kMaxRasterLanes = 16;
 
-// One triangle over a block of one tile, all in int32 (plain data: the
+// One triangle over a block of one tile, edge tests in int32 (plain data: the
 // per-ISA code must not touch std::vector).
 struct EdgeBlock32 {
     std::int32_t row[3];     // biased edge values at the block's first pixel centre
@@ -27,6 +26,19 @@ struct EdgeBlock32 {
     float inv_area;          // 1 / double_area
     float d0, d10, d20;      // depth at corner 0, and corners 1, 2 minus corner 0
     std::uint32_t triangle_id;
+    // Every pixel centre of the block is inside (hierarchical acceptance): no edge test.
+    bool fully_covered = false;
+};
+
+// Barycentric numerators of a block where they leave int32, given to the
+// kernel instead of taking them from EdgeBlock32::row[1], row[2]; row/step
+// then only test coverage, with edges known to be >= 0 over the block given
+// as 0. double holds every edge value exactly (|E| < 2^49 < 2^53), so
+// float(double(E)) rounds once, like the scalar loop's float(int64 E).
+struct WideWeights {
+    double row[2];     // unbiased edge values 1 and 2 at the block's first pixel centre
+    double step_x[2];  // their steps per pixel right
+    double step_y[2];  // and down
 };
 
 struct TileView {
@@ -38,7 +50,8 @@ struct TileView {
 };
 
 #define TESSERA_DECLARE_RASTER_KERNEL(suffix) \
-    void rasterize_block_##suffix(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters);
+    void rasterize_block_##suffix(const EdgeBlock32& block, const WideWeights* wide, const TileView& tile, \
+                                  RasterCounters& counters);
 TESSERA_DECLARE_RASTER_KERNEL(sse4)
 TESSERA_DECLARE_RASTER_KERNEL(avx2)
 TESSERA_DECLARE_RASTER_KERNEL(avx512)

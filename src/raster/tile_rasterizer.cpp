@@ -46,15 +46,53 @@ inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2)
     return z > 0.0f ? z : 0.0f;
 }
 
-// Whether every edge value the SIMD kernel can meet — over the block, plus a
-// vector's worth of lanes past its right end — fits in int32.
-bool fits_int32(const TriangleInTile& p) {
-    const std::int64_t width = p.x_end - p.x_begin + kMaxRasterLanes, height = p.y_end - p.y_begin;
-    for (const EdgeStepper* e : {&p.e0, &p.e1, &p.e2}) {
-        const std::int64_t reach = std::llabs(e->row) + std::llabs(e->step_x) * width + std::llabs(e->step_y) * height;
-        if (reach >= (std::int64_t(1) << 31) - 1) return false;
+// Whether every value of edge e the SIMD kernel can meet over a width×height
+// block starting at e.row — plus a vector's worth of lanes past its right end —
+// fits in int32.
+[[gnu::always_inline]] inline bool edge_fits_int32(const EdgeStepper& e, int width, int height) {
+    const std::int64_t reach = std::llabs(e.row) + std::llabs(e.step_x) * (width + kMaxRasterLanes) +
+                               std::llabs(e.step_y) * height;
+    return reach < (std::int64_t(1) << 31) - 1;
+}
+
+[[gnu::always_inline]] inline bool fits_int32(const TriangleInTile& p) {
+    const int width = p.x_end - p.x_begin, height = p.y_end - p.y_begin;
+    return edge_fits_int32(p.e0, width, height) && edge_fits_int32(p.e1, width, height) &&
+           edge_fits_int32(p.e2, width, height);
+}
+
+// The part [x_begin, x_end) × [y_begin, y_end) of a placed triangle's block,
+// its edges stepped to that part's first pixel centre.
+TriangleInTile sub_block(const TriangleInTile& p, int x_begin, int x_end, int y_begin, int y_end) {
+    TriangleInTile sub = p;
+    sub.x_begin = x_begin, sub.x_end = x_end, sub.y_begin = y_begin, sub.y_end = y_end;
+    for (EdgeStepper* e : {&sub.e0, &sub.e1, &sub.e2})
+        e->row += std::int64_t(x_begin - p.x_begin) * e->step_x + std::int64_t(y_begin - p.y_begin) * e->step_y;
+    return sub;
+}
+
+// An edge function is linear, so over a block its extremes are at corners,
+// chosen by the signs of its steps.
+struct EdgeRange {
+    std::int64_t min, max;  // biased, over the block's pixel centres
+};
+EdgeRange edge_range(const EdgeStepper& e, int width, int height) {
+    const std::int64_t across = e.step_x * (width - 1), down = e.step_y * (height - 1);
+    return {e.row + std::min<std::int64_t>(across, 0) + std::min<std::int64_t>(down, 0),
+            e.row + std::max<std::int64_t>(across, 0) + std::max<std::int64_t>(down, 0)};
+}
+
+enum class BlockCoverage { none, partial, full };
+
+BlockCoverage block_coverage(const TriangleInTile& b) {
+    const int width = b.x_end - b.x_begin, height = b.y_end - b.y_begin;
+    bool full = true;
+    for (const EdgeStepper* e : {&b.e0, &b.e1, &b.e2}) {
+        const EdgeRange range = edge_range(*e, width, height);
+        if (range.max < 0) return BlockCoverage::none;  // every centre outside this edge
+        full = full && range.min >= 0;
     }
-    return true;
+    return full ? BlockCoverage::full : BlockCoverage::partial;
 }
 
 }  // namespace
@@ -96,37 +134,146 @@ void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, cons
     if (const auto placed = place_in_tile(t, tile)) rasterize_scalar(t, *placed, triangle_id, tile, buffers, counters);
 }
 
+namespace {
+
+// What the kernels need besides the edges, for block p of triangle t.
+[[gnu::always_inline]] inline EdgeBlock32 kernel_block(const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
+                         const TileRect& tile) {
+    EdgeBlock32 block;
+    block.x_begin = p.x_begin - tile.x0, block.x_end = p.x_end - tile.x0;
+    block.y_begin = p.y_begin - tile.y0, block.y_end = p.y_end - tile.y0;
+    block.inv_area = t.inv_area;
+    block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
+    block.triangle_id = triangle_id;
+    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    for (int k = 0; k < 3; ++k) block.bias[k] = std::int32_t(e[k]->bias);
+    return block;
+}
+
+[[gnu::always_inline]] inline void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide, TileBuffers& buffers,
+                RasterCounters& counters) {
+    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
+                        buffers.side};
+    switch (isa) {
+        case simd::Isa::sse4: return rasterize_block_sse4(block, wide, view, counters);
+        case simd::Isa::avx2: return rasterize_block_avx2(block, wide, view, counters);
+        case simd::Isa::avx512: return rasterize_block_avx512(block, wide, view, counters);
+        case simd::Isa::scalar: break;
+    }
+}
+
+// Block p with every edge value in int32 (fits_int32(p)). Inlined: the
+// whole-box path of medium triangles pays for every call (raster/*/medium).
+[[gnu::always_inline]] inline void rasterize_int32(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, bool fully_covered,
+                     std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+    EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
+    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    for (int k = 0; k < 3; ++k) {
+        block.row[k] = std::int32_t(e[k]->row);
+        block.step_x[k] = std::int32_t(e[k]->step_x);
+        block.step_y[k] = std::int32_t(e[k]->step_y);
+    }
+    block.fully_covered = fully_covered;
+    run_kernel(isa, block, nullptr, buffers, counters);
+}
+
+// Block p whose barycentric numerators leave int32: weights in double, and
+// coverage tested in int32 only for the edges that cross the block. False,
+// doing nothing, when even those leave int32 (edges thousands of pixels long).
+bool rasterize_wide(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, bool fully_covered,
+                    std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+    const int width = p.x_end - p.x_begin, height = p.y_end - p.y_begin;
+    EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
+    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    for (int k = 0; k < 3; ++k) {
+        // An edge >= 0 over the whole block passes everywhere: tested as 0.
+        const bool passes = fully_covered || edge_range(*e[k], width, height).min >= 0;
+        if (!passes && !edge_fits_int32(*e[k], width, height)) return false;
+        block.row[k] = passes ? 0 : std::int32_t(e[k]->row);
+        block.step_x[k] = passes ? 0 : std::int32_t(e[k]->step_x);
+        block.step_y[k] = passes ? 0 : std::int32_t(e[k]->step_y);
+    }
+    block.fully_covered = fully_covered;
+    WideWeights wide;
+    for (int k = 0; k < 2; ++k) {
+        const EdgeStepper& weight = k == 0 ? p.e1 : p.e2;
+        wide.row[k] = double(weight.row - weight.bias);
+        wide.step_x[k] = double(weight.step_x);
+        wide.step_y[k] = double(weight.step_y);
+    }
+    run_kernel(isa, block, &wide, buffers, counters);
+    return true;
+}
+
+// Hierarchical rasterization (as llvmpipe's lp_rast, one level): the box is
+// cut into kBlockSide² blocks, each found outside an edge (skipped), inside
+// all three (no edge test), or crossed by one. Blocks of one kind next to each
+// other in a row of blocks go to the kernel together, fewer and wider calls.
+// 16 measured best (raster/*/large and huge, against 8 and 32, and 8- or
+// 32-row strips): smaller blocks mean more, shorter kernel calls.
+constexpr int kBlockSide = 16;
+
+// A run of blocks of one kind, one row of blocks tall.
+void rasterize_run(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& run, BlockCoverage coverage,
+                   std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+    const bool full = coverage == BlockCoverage::full;
+    if (fits_int32(run)) return rasterize_int32(isa, t, run, full, triangle_id, tile, buffers, counters);
+    if (rasterize_wide(isa, t, run, full, triangle_id, tile, buffers, counters)) return;
+    // Long edges crossing a wide run: block by block, the int64 loop as last resort.
+    for (int x = run.x_begin; x < run.x_end; x += kBlockSide) {
+        const TriangleInTile block = sub_block(run, x, std::min(x + kBlockSide, run.x_end), run.y_begin, run.y_end);
+        if (!rasterize_wide(isa, t, block, full, triangle_id, tile, buffers, counters))
+            rasterize_scalar(t, block, triangle_id, tile, buffers, counters);
+    }
+}
+
+// Out of line, like rasterize_int32(), so that the dispatcher's path for tiny
+// triangles (most of a finely tessellated mesh) stays short.
+[[gnu::noinline]] void rasterize_hierarchical(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& placed,
+                            std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
+                            RasterCounters& counters) {
+    for (int y = placed.y_begin; y < placed.y_end; y += kBlockSide) {
+        const int y_end = std::min(y + kBlockSide, placed.y_end);
+        int run_begin = placed.x_begin;
+        BlockCoverage run_coverage = BlockCoverage::none;
+        auto finish_run = [&](int run_end) {
+            if (run_coverage != BlockCoverage::none)
+                rasterize_run(isa, t, sub_block(placed, run_begin, run_end, y, y_end), run_coverage, triangle_id, tile,
+                              buffers, counters);
+        };
+        for (int x = placed.x_begin; x < placed.x_end; x += kBlockSide) {
+            const BlockCoverage coverage =
+                block_coverage(sub_block(placed, x, std::min(x + kBlockSide, placed.x_end), y, y_end));
+            if (coverage == run_coverage) continue;
+            finish_run(x);
+            run_begin = x, run_coverage = coverage;
+        }
+        finish_run(placed.x_end);
+    }
+}
+
+}  // namespace
+
 void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                         TileBuffers& buffers, RasterCounters& counters) {
     const auto placed = place_in_tile(t, tile);
     if (!placed) return;
     // Blocks narrower than this are quicker one pixel at a time (most
-    // triangles of a finely tessellated mesh); large triangles, whose edge
-    // values leave int32, take the int64 loop too.
+    // triangles of a finely tessellated mesh).
     constexpr int kMinSimdWidth = 4;
-    if (isa == simd::Isa::scalar || placed->x_end - placed->x_begin < kMinSimdWidth || !fits_int32(*placed))
+    const int width = placed->x_end - placed->x_begin, height = placed->y_end - placed->y_begin;
+    if (isa == simd::Isa::scalar || width < kMinSimdWidth)
         return rasterize_scalar(t, *placed, triangle_id, tile, buffers, counters);
-    const EdgeStepper* e[3] = {&placed->e0, &placed->e1, &placed->e2};
-    EdgeBlock32 block;
-    for (int k = 0; k < 3; ++k) {
-        block.row[k] = std::int32_t(e[k]->row);
-        block.step_x[k] = std::int32_t(e[k]->step_x);
-        block.step_y[k] = std::int32_t(e[k]->step_y);
-        block.bias[k] = std::int32_t(e[k]->bias);
-    }
-    block.x_begin = placed->x_begin - tile.x0, block.x_end = placed->x_end - tile.x0;
-    block.y_begin = placed->y_begin - tile.y0, block.y_end = placed->y_end - tile.y0;
-    block.inv_area = t.inv_area;
-    block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
-    block.triangle_id = triangle_id;
-    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
-                        buffers.side};
-    switch (isa) {
-        case simd::Isa::sse4: return rasterize_block_sse4(block, view, counters);
-        case simd::Isa::avx2: return rasterize_block_avx2(block, view, counters);
-        case simd::Isa::avx512: return rasterize_block_avx512(block, view, counters);
-        case simd::Isa::scalar: break;
-    }
+    // Boxes whose edge values leave int32 as a whole take the hierarchy: per
+    // block they mostly fit, or need only their weights in double. Others take
+    // it when over four vectors wide: below that (with AVX-512, up to 64 px,
+    // where the box is one or two blocks across) the kernel skips empty vectors
+    // more cheaply than blocks are classified and called (raster/*/large).
+    const int lanes = isa == simd::Isa::avx512 ? 16 : isa == simd::Isa::avx2 ? 8 : 4;
+    const bool big_box = width > 4 * lanes && height >= kBlockSide;
+    if (!big_box && fits_int32(*placed))
+        return rasterize_int32(isa, t, *placed, false, triangle_id, tile, buffers, counters);
+    rasterize_hierarchical(isa, t, *placed, triangle_id, tile, buffers, counters);
 }
 
 }  // namespace tessera::raster

@@ -1,11 +1,57 @@
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 
 #include "raster_test_util.hpp"
 
 using namespace tessera;
+
+namespace {
+
+// Rasterizes the triangles into `tile` with the scalar int64 loop and with
+// every ISA's vector path, and checks that the buffers (coverage by the fill
+// rule, depth, triangle ids, barycentrics) and the counters are bit-identical.
+// Returns the scalar loop's buffers.
+raster::TileBuffers check_isas_match_scalar(const std::vector<raster::RasterTriangle>& triangles,
+                                            const raster::TileRect& tile) {
+    const int side = tile.width();
+    raster::TileBuffers reference;
+    reference.reset(side);
+    raster::RasterCounters reference_counts;
+    for (std::uint32_t i = 0; i < triangles.size(); ++i)
+        raster::rasterize_triangle(triangles[i], i, tile, reference, reference_counts);
+
+    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+        CAPTURE(simd::isa_name(isa));
+        if (!simd::isa_supported(isa)) {
+            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+            continue;
+        }
+        raster::TileBuffers buffers;
+        buffers.reset(side);
+        raster::RasterCounters counts;
+        for (std::uint32_t i = 0; i < triangles.size(); ++i)
+            raster::rasterize_triangle(isa, triangles[i], i, tile, buffers, counts);
+        CHECK(counts.fragments == reference_counts.fragments);
+        CHECK(counts.depth_passed == reference_counts.depth_passed);
+        int mismatches = 0;
+        for (std::size_t p = 0; p < std::size_t(side) * side; ++p) {
+            const bool covered = reference.covered(p);
+            if (covered != buffers.covered(p) ||
+                std::memcmp(&reference.depth[p], &buffers.depth[p], sizeof(float)) != 0 ||
+                (covered && (reference.triangle[p] != buffers.triangle[p] ||
+                             std::memcmp(&reference.lambda1[p], &buffers.lambda1[p], sizeof(float)) != 0 ||
+                             std::memcmp(&reference.lambda2[p], &buffers.lambda2[p], sizeof(float)) != 0)))
+                ++mismatches;
+        }
+        CHECK(mismatches == 0);
+    }
+    return reference;
+}
+
+}  // namespace
 
 // The vector kernels must leave the tile buffers exactly as the scalar int64
 // loop does: same coverage (fill rule), depth, triangle ids and barycentrics.
@@ -35,38 +81,97 @@ TEST_CASE("every ISA's rasterizer gives bit-identical tile buffers to the scalar
                                         {0, 1, 2});
         if (t) triangles.push_back(*t);
     }
-    const raster::TileRect tile{64, 64, 64 + kTile, 64 + kTile};
+    const raster::TileBuffers reference = check_isas_match_scalar(triangles, {64, 64, 64 + kTile, 64 + kTile});
+    int covered = 0;
+    for (std::size_t p = 0; p < std::size_t(kTile) * kTile; ++p) covered += reference.covered(p);
+    CHECK(covered > kTile * kTile / 2);
+}
 
-    raster::TileBuffers reference;
-    reference.reset(kTile);
-    raster::RasterCounters reference_counts;
-    for (std::uint32_t i = 0; i < triangles.size(); ++i)
-        raster::rasterize_triangle(triangles[i], i, tile, reference, reference_counts);
-    REQUIRE(reference_counts.fragments > 10000);
-
-    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
-        CAPTURE(simd::isa_name(isa));
-        if (!simd::isa_supported(isa)) {
-            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
-            continue;
+// Big boxes go through the block hierarchy (whole blocks rejected, accepted
+// without edge tests, or tested per pixel; barycentric numerators past int32
+// in double; blocks crossed by very long edges in the int64 loop). A block
+// wrongly accepted or rejected changes coverage or counts, and a barycentric
+// rounded differently from the scalar loop's float(int64) changes its bits.
+TEST_CASE("block hierarchy: huge triangles, slivers and ties on block borders match the scalar loop") {
+    // A 16384² image: edges thousands of pixels long, edge values far past int32.
+    constexpr int kImage = 16384;
+    std::mt19937 rng(98765);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int tile_side = 8; tile_side <= 128; tile_side *= 2) {
+        CAPTURE(tile_side);
+        // Tiles sit on their own grid, as the renderer's do.
+        const int x0 = 8192 + 3 * tile_side, y0 = 8192 + 5 * tile_side;
+        const raster::TileRect tile{x0, y0, x0 + tile_side, y0 + tile_side};
+        auto in_tile = [&](float margin) {
+            return glm::vec2{float(x0) - margin + unit(rng) * (tile_side + 2 * margin),
+                             float(y0) - margin + unit(rng) * (tile_side + 2 * margin)};
+        };
+        auto on_centre = [](glm::vec2 p) { return glm::floor(p) + 0.5f; };
+        std::vector<raster::RasterTriangle> triangles;
+        int kind = 0;
+        while (triangles.size() < 1500) {
+            glm::vec2 a, b, c;
+            switch (kind++ % 5) {
+                case 0:
+                case 1: {  // large to huge (radius up to 6000 px) around a point near the tile
+                    const float radius = std::array<float, 4>{40.0f, 300.0f, 2000.0f, 6000.0f}[kind / 5 % 4];
+                    const glm::vec2 p = in_tile(16.0f);
+                    auto corner = [&] { return p + radius * glm::vec2{unit(rng) * 2 - 1, unit(rng) * 2 - 1}; };
+                    a = corner(), b = corner(), c = corner();
+                    if (kind % 3 == 0) a = on_centre(a), b = on_centre(b), c = on_centre(c);
+                    break;
+                }
+                case 2: {  // a sliver up to 0.5-3 px thick, hundreds to thousands of pixels long
+                    const glm::vec2 p = in_tile(4.0f);
+                    const float angle = unit(rng) * 6.2831853f, length = 100.0f + unit(rng) * 3000.0f;
+                    const glm::vec2 along{std::cos(angle), std::sin(angle)}, across{-along.y, along.x};
+                    a = p - along * length, b = p + along * length;
+                    c = p + along * (length * (unit(rng) * 2 - 1)) + across * (0.5f + unit(rng) * 2.5f);
+                    break;
+                }
+                case 3: {  // a quad split along its diagonal, corners on pixel centres on block borders:
+                           // shared edges and axis-aligned edges through centres at block borders tie
+                    const int step = 8 * (1 + int(unit(rng) * 4));
+                    const glm::vec2 p{float(x0 + 16 * int(unit(rng) * 4) - 16) + 0.5f,
+                                      float(y0 + 16 * int(unit(rng) * 4) - 16) + 0.5f};
+                    const glm::vec2 q = p + glm::vec2{float(step * (1 + int(unit(rng) * 8))),
+                                                      float(step * (1 + int(unit(rng) * 8)))};
+                    if (kind % 2) {
+                        a = p, b = {q.x, p.y}, c = q;
+                    } else {
+                        a = p, b = q, c = {p.x, q.y};
+                    }
+                    break;
+                }
+                default: {  // huge, with one corner exactly on a pixel centre in the tile and edges at 45°
+                    const glm::vec2 p = on_centre(in_tile(0.0f));
+                    const float r = float(int(50 + unit(rng) * 3000));
+                    a = p, b = p + glm::vec2{r, r}, c = p + glm::vec2{-r, r};
+                    if (kind % 2) b.y = -b.y + 2 * p.y, c.y = -c.y + 2 * p.y;
+                    break;
+                }
+            }
+            auto t = raster::setup_triangle({kImage, kImage},
+                                            {test::clip_for_screen(a.x, a.y, unit(rng), 1, kImage, kImage),
+                                             test::clip_for_screen(b.x, b.y, unit(rng), 1, kImage, kImage),
+                                             test::clip_for_screen(c.x, c.y, unit(rng), 1, kImage, kImage)},
+                                            {0, 1, 2});
+            if (t) triangles.push_back(*t);
         }
-        raster::TileBuffers buffers;
-        buffers.reset(kTile);
-        raster::RasterCounters counts;
-        for (std::uint32_t i = 0; i < triangles.size(); ++i)
-            raster::rasterize_triangle(isa, triangles[i], i, tile, buffers, counts);
-        CHECK(counts.fragments == reference_counts.fragments);
-        CHECK(counts.depth_passed == reference_counts.depth_passed);
-        int mismatches = 0;
-        for (std::size_t p = 0; p < std::size_t(kTile) * kTile; ++p) {
-            const bool covered = reference.covered(p);
-            if (covered != buffers.covered(p) ||
-                std::memcmp(&reference.depth[p], &buffers.depth[p], sizeof(float)) != 0 ||
-                (covered && (reference.triangle[p] != buffers.triangle[p] ||
-                             std::memcmp(&reference.lambda1[p], &buffers.lambda1[p], sizeof(float)) != 0 ||
-                             std::memcmp(&reference.lambda2[p], &buffers.lambda2[p], sizeof(float)) != 0)))
-                ++mismatches;
+        const raster::TileBuffers reference = check_isas_match_scalar(triangles, tile);
+        int covered = 0;
+        for (std::size_t p = 0; p < std::size_t(tile_side) * tile_side; ++p) covered += reference.covered(p);
+        CHECK(covered == tile_side * tile_side);
+        // The test means something only if many triangles cover the tile with
+        // barycentric numerators past int32: count those covering its centre so.
+        const std::int64_t cx = std::int64_t(x0 + tile_side / 2) * 256 + 128, cy = std::int64_t(y0 + tile_side / 2) * 256 + 128;
+        int past_int32 = 0;
+        for (const raster::RasterTriangle& t : triangles) {
+            const std::int64_t e0 = raster::edge_function(t.x[1], t.y[1], t.x[2], t.y[2], cx, cy);
+            const std::int64_t e1 = raster::edge_function(t.x[2], t.y[2], t.x[0], t.y[0], cx, cy);
+            const std::int64_t e2 = raster::edge_function(t.x[0], t.y[0], t.x[1], t.y[1], cx, cy);
+            past_int32 += e0 > 0 && e1 > 0 && e2 > 0 && std::max(e1, e2) > (std::int64_t(1) << 31);
         }
-        CHECK(mismatches == 0);
+        CHECK(past_int32 > 50);
     }
 }
