@@ -13,11 +13,15 @@
 #define GL_GLEXT_PROTOTYPES 1  // glvnd's libOpenGL exports every core entry point: no loader needed
 #include <GL/glcorearb.h>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace tessera::gl_reference {
 
 namespace {
+
+// The only multisample count Tessera has (src/raster/msaa.hpp: kMsaaSamples).
+constexpr int kMsaaSamples = 4;
 
 // The reference vertex shader of pbr_lighting.md, verbatim but for the normal: the
 // reference's mat3(model) is only right for uniform scale (its own comment says so),
@@ -218,8 +222,12 @@ struct GlReferenceRenderer::State {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
 
+    // Single-sample target: drawn into without MSAA, the resolve target with it; read back.
     GLuint fbo = 0, color_rb = 0, depth_rb = 0;
     int fb_width = 0, fb_height = 0;
+    // 4× multisampled target (RGBA8 + DEPTH24), created on the first scene with msaa = 4.
+    GLuint msaa_fbo = 0, msaa_color_rb = 0, msaa_depth_rb = 0;
+    int msaa_width = 0, msaa_height = 0;
 
     GLuint pbr_program = 0;
     int pbr_light_count = -1;  // the LIGHT_COUNT pbr_program was built for
@@ -237,6 +245,9 @@ struct GlReferenceRenderer::State {
             if (fbo) glDeleteFramebuffers(1, &fbo);
             if (color_rb) glDeleteRenderbuffers(1, &color_rb);
             if (depth_rb) glDeleteRenderbuffers(1, &depth_rb);
+            if (msaa_fbo) glDeleteFramebuffers(1, &msaa_fbo);
+            if (msaa_color_rb) glDeleteRenderbuffers(1, &msaa_color_rb);
+            if (msaa_depth_rb) glDeleteRenderbuffers(1, &msaa_depth_rb);
             eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display, context);
         }
@@ -311,15 +322,53 @@ struct GlReferenceRenderer::State {
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+        check_framebuffer_complete("framebuffer");
+        check_gl("creating the framebuffer");
+        fb_width = width;
+        fb_height = height;
+    }
+
+    // The 4× multisampled framebuffer beside the single-sample one (which stays the
+    // resolve target and what is read back).
+    void ensure_msaa_framebuffer(int width, int height) {
+        if (msaa_fbo != 0 && msaa_width == width && msaa_height == height) return;
+        GLint max_samples = 0;
+        glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+        if (max_samples < kMsaaSamples)
+            fail("4x MSAA unsupported: GL_MAX_SAMPLES is " + std::to_string(max_samples));
+        if (msaa_fbo == 0) {
+            glGenFramebuffers(1, &msaa_fbo);
+            glGenRenderbuffers(1, &msaa_color_rb);
+            glGenRenderbuffers(1, &msaa_depth_rb);
+        }
+        GLint color_samples = 0, depth_samples = 0;
+        glBindRenderbuffer(GL_RENDERBUFFER, msaa_color_rb);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, kMsaaSamples, GL_RGBA8, width, height);
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &color_samples);
+        glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_rb);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, kMsaaSamples, GL_DEPTH_COMPONENT24, width, height);
+        glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &depth_samples);
+        check_gl("allocating the 4x multisampled renderbuffers");
+        // GL may round the count up; anything but 4 would compare against a different resolve.
+        if (color_samples != kMsaaSamples || depth_samples != kMsaaSamples)
+            fail("asked for 4x MSAA renderbuffers, got " + std::to_string(color_samples) + " colour / " +
+                 std::to_string(depth_samples) + " depth samples");
+        glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_rb);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_rb);
+        check_framebuffer_complete("4x multisampled framebuffer");
+        check_gl("creating the 4x multisampled framebuffer");
+        msaa_width = width;
+        msaa_height = height;
+    }
+
+    static void check_framebuffer_complete(const char* which) {
         const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             char buf[16];
             std::snprintf(buf, sizeof buf, "0x%04x", unsigned(status));
-            fail(std::string("framebuffer incomplete: ") + buf);
+            fail(std::string(which) + " incomplete: " + buf);
         }
-        check_gl("creating the framebuffer");
-        fb_width = width;
-        fb_height = height;
     }
 
     void ensure_pbr_program(int light_count) {
@@ -376,14 +425,18 @@ struct GlReferenceRenderer::State {
     }
 
     void prepare(const Scene& scene) {
+        if (scene.msaa != 1 && scene.msaa != kMsaaSamples)
+            fail("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
         ensure_framebuffer(scene.width, scene.height);
+        if (scene.msaa == kMsaaSamples) ensure_msaa_framebuffer(scene.width, scene.height);
         ensure_pbr_program(int(scene.lights.size()));
         upload_meshes(scene);
     }
 
-    // One frame into the FBO: clear, then every object. No glFinish here.
-    void draw(const Scene& scene, bool object_ids) {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    // One frame into the FBO: clear, then every object; with `multisampled`, into the
+    // 4x FBO and then resolved into the single-sample one. No glFinish here.
+    void draw(const Scene& scene, bool object_ids, bool multisampled, WindowOrigin origin = WindowOrigin::bottom_left) {
+        glBindFramebuffer(GL_FRAMEBUFFER, multisampled ? msaa_fbo : fbo);
         glViewport(0, 0, scene.width, scene.height);
         if (object_ids)
             glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
@@ -397,7 +450,9 @@ struct GlReferenceRenderer::State {
         const Uniforms& u = object_ids ? id_uniforms : pbr_uniforms;
         glUseProgram(object_ids ? id_program : pbr_program);
         const glm::mat4 view = view_matrix(scene.camera);
-        const glm::mat4 projection = projection_matrix(scene.camera, scene.width, scene.height);
+        glm::mat4 projection = projection_matrix(scene.camera, scene.width, scene.height);
+        // Upside down in window space, so the image's top row is window row 0.
+        if (origin == WindowOrigin::top_left) projection = glm::scale(glm::mat4(1.0f), {1.0f, -1.0f, 1.0f}) * projection;
         glUniformMatrix4fv(u.view, 1, GL_FALSE, glm::value_ptr(view));
         glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
         glUniform3fv(u.cam_pos, 1, glm::value_ptr(scene.camera.position));
@@ -429,16 +484,26 @@ struct GlReferenceRenderer::State {
             glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
         }
         glBindVertexArray(0);
+        if (multisampled) resolve(scene.width, scene.height);
     }
 
-    // The colour attachment as RGBA8, row 0 at the top (GL's row 0 is the bottom).
-    std::vector<std::uint8_t> read_rgba_top_down(int width, int height) {
+    // The multisample resolve: GL averages each pixel's samples into the single-sample FBO.
+    void resolve(int width, int height) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+
+    // The colour attachment as RGBA8, row 0 at the top (GL's row 0 is the bottom, unless
+    // the frame was drawn with WindowOrigin::top_left).
+    std::vector<std::uint8_t> read_rgba_top_down(int width, int height, WindowOrigin origin = WindowOrigin::bottom_left) {
         std::vector<std::uint8_t> bottom_up(std::size_t(width) * std::size_t(height) * 4);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
         glReadBuffer(GL_COLOR_ATTACHMENT0);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
         check_gl("reading pixels");
+        if (origin == WindowOrigin::top_left) return bottom_up;
         std::vector<std::uint8_t> top_down(bottom_up.size());
         const std::size_t row_bytes = std::size_t(width) * 4;
         for (int y = 0; y < height; ++y)
@@ -452,12 +517,12 @@ GlReferenceRenderer::GlReferenceRenderer() : state_(std::make_unique<State>()) {
 
 GlReferenceRenderer::~GlReferenceRenderer() = default;
 
-RenderedImage GlReferenceRenderer::render(const Scene& scene) {
+RenderedImage GlReferenceRenderer::render(const Scene& scene, WindowOrigin origin) {
     state_->prepare(scene);
-    state_->draw(scene, false);
+    state_->draw(scene, false, scene.msaa > 1, origin);
     glFinish();
     check_gl("rendering");
-    const std::vector<std::uint8_t> rgba = state_->read_rgba_top_down(scene.width, scene.height);
+    const std::vector<std::uint8_t> rgba = state_->read_rgba_top_down(scene.width, scene.height, origin);
     RenderedImage image;
     image.width = scene.width;
     image.height = scene.height;
@@ -469,7 +534,7 @@ RenderedImage GlReferenceRenderer::render(const Scene& scene) {
 
 std::vector<std::uint32_t> GlReferenceRenderer::render_object_ids(const Scene& scene) {
     state_->prepare(scene);
-    state_->draw(scene, true);
+    state_->draw(scene, true, false);  // ids are not averaged: the single-sample path, whatever scene.msaa
     glFinish();
     check_gl("rendering object ids");
     const std::vector<std::uint8_t> rgba = state_->read_rgba_top_down(scene.width, scene.height);
@@ -482,21 +547,34 @@ std::vector<std::uint32_t> GlReferenceRenderer::render_object_ids(const Scene& s
 
 std::vector<double> GlReferenceRenderer::time_frames(const Scene& scene, int frames, int warmup) {
     state_->prepare(scene);
+    const bool multisampled = scene.msaa > 1;
     for (int i = 0; i < warmup; ++i) {
-        state_->draw(scene, false);
+        state_->draw(scene, false, multisampled);
         glFinish();
     }
     std::vector<double> ms;
     ms.reserve(std::size_t(frames > 0 ? frames : 0));
     for (int i = 0; i < frames; ++i) {
         const auto start = std::chrono::steady_clock::now();
-        state_->draw(scene, false);
+        state_->draw(scene, false, multisampled);  // with MSAA this includes the resolve blit
         glFinish();
         const auto end = std::chrono::steady_clock::now();
         ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
     }
     check_gl("timing frames");
     return ms;
+}
+
+std::vector<glm::vec2> GlReferenceRenderer::msaa_sample_positions() {
+    if (state_->msaa_fbo == 0) state_->ensure_msaa_framebuffer(1, 1);
+    glBindFramebuffer(GL_FRAMEBUFFER, state_->msaa_fbo);
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLES, &samples);
+    std::vector<glm::vec2> positions(std::size_t(samples > 0 ? samples : 0));
+    for (GLuint i = 0; i < GLuint(positions.size()); ++i)
+        glGetMultisamplefv(GL_SAMPLE_POSITION, i, glm::value_ptr(positions[i]));
+    check_gl("querying GL_SAMPLE_POSITION");
+    return positions;
 }
 
 std::string GlReferenceRenderer::renderer_name() const {

@@ -10,16 +10,29 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::gl_reference {
 
+// Where the image's row 0 lies in GL's window space. bottom_left is plain OpenGL. top_left
+// draws the scene upside down in window space (projection y negated) and reads the rows
+// back unflipped: the same image, but GL's window-space sample positions (y up) then
+// read y down from the pixel's top, as Tessera's and D3D/Vulkan's do. llvmpipe's 4×
+// pattern lands on Tessera's this way instead of on its mirror image.
+enum class WindowOrigin { bottom_left, top_left };
+
 // Owns one EGL display + GL 3.3 core context (current on the constructing thread;
 // use the object from that thread only) and an offscreen framebuffer of RGBA8
-// colour + 24-bit depth at the last scene's size, without MSAA. Meshes and the
-// shader program are rebuilt when the scene (its meshes, or its light count) changes.
-// Every EGL/GL failure throws std::runtime_error naming what failed.
+// colour + 24-bit depth at the last scene's size. A scene with msaa = 4 is drawn into
+// a 4-sample framebuffer of the same formats (glRenderbufferStorageMultisample) and
+// resolved by glBlitFramebuffer into the single-sample one, which is read back; with
+// msaa = 1 nothing multisampled is made or used. Meshes and the shader program are
+// rebuilt when the scene (its meshes, or its light count) changes.
+// Every EGL/GL failure throws std::runtime_error naming what failed, including a
+// driver whose GL_MAX_SAMPLES is below 4 when a scene asks for 4× MSAA.
 class GlReferenceRenderer {
 public:
     GlReferenceRenderer();
@@ -27,18 +40,25 @@ public:
     GlReferenceRenderer(const GlReferenceRenderer&) = delete;
     GlReferenceRenderer& operator=(const GlReferenceRenderer&) = delete;
 
-    // One frame, read back: `display` is RGB8, row 0 at the top (as Tessera's);
+    // One frame (multisampled and resolved if scene.msaa is 4), read back: `display` is RGB8, row 0 at the top (as Tessera's);
     // `radiance` stays empty (the reference shader only writes the tonemapped colour).
-    RenderedImage render(const Scene& scene);
+    RenderedImage render(const Scene& scene, WindowOrigin origin = WindowOrigin::bottom_left);
 
     // The object covering each pixel, row 0 at the top: 0 for background, i + 1 for
-    // scene.objects[i]. Same geometry and depth test as render(); for finding silhouettes.
+    // scene.objects[i]. Same geometry and depth test as render(), but always one sample
+    // per pixel (ids cannot be averaged), at the pixel centre; for finding silhouettes.
     std::vector<std::uint32_t> render_object_ids(const Scene& scene);
 
     // Renders `warmup` untimed frames, then `frames` timed ones, and returns each timed
-    // frame's wall-clock milliseconds. A frame is clear + every draw + glFinish; the
-    // readback is not included (Tessera's frame time does not include writing a file either).
+    // frame's wall-clock milliseconds. A frame is clear + every draw (+ with msaa = 4 the
+    // resolve blit, as Tessera's frame includes its resolve) + glFinish; the readback is
+    // not included (Tessera's frame time does not include writing a file either).
     std::vector<double> time_frames(const Scene& scene, int frames, int warmup);
+
+    // GL_SAMPLE_POSITION of each sample of the 4× multisampled framebuffer, as GL reports
+    // it: in pixels from the pixel's bottom-left corner, x right, y UP (window space). In
+    // a top-down image the sample sits at (x, 1 - y) from the pixel's top-left corner.
+    std::vector<glm::vec2> msaa_sample_positions();
 
     // GL_RENDERER and GL_VERSION, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)", "3.3 (Core Profile) Mesa 22.3.6".
     std::string renderer_name() const;
