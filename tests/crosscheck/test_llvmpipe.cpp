@@ -191,3 +191,152 @@ TEST_CASE("crosscheck: a scene without lights renders ambient only in both") {
     CHECK(a.agreeing_fraction() >= kMinAgreeingFraction);
     CHECK(a.max_interior_difference <= kMaxInteriorDifference);
 }
+
+// ---------------------------------------------------------------------------------------
+// 4× MSAA against llvmpipe's 4× MSAA (a 4-sample FBO resolved by glBlitFramebuffer).
+//
+// Measured on llvmpipe (Mesa 22.3.6):
+// - GL_SAMPLE_POSITION reports (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875)
+//   in window space, y UP from the pixel's bottom (thin quads on a 1×1 FBO confirm it).
+//   Tessera uses the same numbers y DOWN from the pixel's top (the D3D/Vulkan pattern as
+//   seen on screen), so in a plain GL image llvmpipe's pattern is Tessera's mirrored top
+//   to bottom and no sample position is shared. Drawn with WindowOrigin::top_left (upside
+//   down in window space) llvmpipe's samples land on Tessera's; the test compares that.
+// - The resolve averages in float and rounds ties (the four 8-bit values summing to
+//   2 mod 4) mostly to even; Tessera rounds them up, (sum + 2) / 4: at most 1/255 apart.
+// - Shading position: llvmpipe shades every fragment at the pixel centre (extrapolated if
+//   the triangle misses it); Tessera shades at its first covered sample then. That only
+//   matters where a pixel holds several triangles: silhouettes, and inside a mesh where
+//   two of its triangles meet, which in the sharp highlights of the glossy spheres moves
+//   a pixel by up to ~50/255. Those interior pixels are the ones Tessera's MSAA changes
+//   from its 1× image (one triangle covering all four samples and the centre gives the
+//   1× value exactly); they are counted and bounded, the other interior pixels are held
+//   to the 1× bound.
+// - Edges: on the pixels llvmpipe's MSAA changes, Tessera's MSAA image must be far closer
+//   to llvmpipe's than Tessera's 1× image is, and closer with the patterns aligned than
+//   mirrored: this fails if Tessera's coverage, resolve, sample count or pattern is off.
+namespace {
+
+constexpr double kMaxMovedInteriorFraction = 0.0025;  // of all pixels; measured 0.13%
+constexpr double kMaxEdgeDifferenceRatio = 0.2;        // 4× mean / 1× mean; measured 0.08 aligned, 0.36 mirrored
+
+int max_channel_difference(const RenderedImage& a, const RenderedImage& b, std::size_t pixel) {
+    int diff = 0;
+    for (std::size_t c = 0; c < 3; ++c)
+        diff = std::max(diff, std::abs(int(a.display[pixel * 3 + c]) - int(b.display[pixel * 3 + c])));
+    return diff;
+}
+
+// Off-silhouette pixels, split by whether Tessera's MSAA changed them from its 1× image.
+struct InteriorAgreement {
+    std::size_t moved = 0;        // Tessera 4× differs from Tessera 1× by more than kChannelTolerance
+    std::size_t moved_off = 0;    // ... and from llvmpipe 4× too
+    int max_unmoved_difference = 0;  // Tessera 4× against llvmpipe 4× over the others
+};
+
+InteriorAgreement measure_interior(const RenderedImage& tessera_msaa, const RenderedImage& tessera_single,
+                                   const RenderedImage& gl_msaa, const std::vector<std::uint32_t>& gl_ids) {
+    InteriorAgreement a;
+    const int w = gl_msaa.width, h = gl_msaa.height;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (on_silhouette(gl_ids, w, h, x, y)) continue;
+            const std::size_t p = std::size_t(y) * std::size_t(w) + std::size_t(x);
+            const int diff = max_channel_difference(tessera_msaa, gl_msaa, p);
+            if (max_channel_difference(tessera_msaa, tessera_single, p) > kChannelTolerance) {
+                ++a.moved;
+                if (diff > kChannelTolerance) ++a.moved_off;
+            } else {
+                a.max_unmoved_difference = std::max(a.max_unmoved_difference, diff);
+            }
+        }
+    }
+    return a;
+}
+
+// Mean over "edge pixels" of the largest channel difference, in 8-bit steps. Edge pixels
+// are chosen by the reference alone: where llvmpipe's 4× image differs from its 1× image
+// by more than kChannelTolerance.
+struct EdgeCloseness {
+    std::size_t pixels = 0;
+    double msaa_mean = 0;    // Tessera 4× against llvmpipe 4×
+    double single_mean = 0;  // Tessera 1× against llvmpipe 4×
+};
+
+EdgeCloseness measure_edges(const RenderedImage& tessera_msaa, const RenderedImage& tessera_single,
+                            const RenderedImage& gl_msaa, const RenderedImage& gl_single) {
+    EdgeCloseness e;
+    const std::size_t n = std::size_t(gl_msaa.width) * std::size_t(gl_msaa.height);
+    for (std::size_t p = 0; p < n; ++p) {
+        if (max_channel_difference(gl_msaa, gl_single, p) <= kChannelTolerance) continue;
+        ++e.pixels;
+        e.msaa_mean += max_channel_difference(tessera_msaa, gl_msaa, p);
+        e.single_mean += max_channel_difference(tessera_single, gl_msaa, p);
+    }
+    if (e.pixels) e.msaa_mean /= double(e.pixels), e.single_mean /= double(e.pixels);
+    return e;
+}
+
+}  // namespace
+
+TEST_CASE("crosscheck: llvmpipe's 4x sample positions are the standard numbers in window space (y up)") {
+    const std::vector<glm::vec2> positions = gl_renderer().msaa_sample_positions();
+    std::string listed;
+    for (const glm::vec2& p : positions) listed += " (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
+    MESSAGE("GL_SAMPLE_POSITION, y up:" << listed);
+    // Tessera's numbers (src/raster/msaa.hpp), which Tessera reads y down.
+    const glm::vec2 expected[4] = {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
+    REQUIRE(positions.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+        CHECK(positions[i].x == expected[i].x);
+        CHECK(positions[i].y == expected[i].y);
+    }
+}
+
+TEST_CASE("crosscheck: spheres_msaa.toml (4x MSAA) agrees with llvmpipe's 4x MSAA") {
+    const Scene scene = load_scene_file(test::scene_path("spheres_msaa.toml"));
+    REQUIRE(scene.msaa == 4);
+    Scene single = scene;
+    single.msaa = 1;
+
+    using gl_reference::WindowOrigin;
+    gl_reference::GlReferenceRenderer& gl = gl_renderer();
+    const RenderedImage gl_msaa = gl.render(scene, WindowOrigin::top_left);  // Tessera's sample positions
+    const RenderedImage gl_single = gl.render(single, WindowOrigin::top_left);
+    const RenderedImage gl_msaa_mirrored = gl.render(scene);  // plain GL: the mirrored pattern
+    const std::vector<std::uint32_t> gl_ids = gl.render_object_ids(scene);
+    Renderer renderer;
+    const RenderedImage tessera_msaa = renderer.render(scene);  // copies: render() reuses its image
+    const RenderedImage tessera_single = renderer.render(single);
+    REQUIRE(tessera_msaa.width == gl_msaa.width);
+    REQUIRE(tessera_msaa.height == gl_msaa.height);
+
+    const Agreement a = measure(tessera_msaa, gl_msaa, gl_ids);
+    const InteriorAgreement in = measure_interior(tessera_msaa, tessera_single, gl_msaa, gl_ids);
+    const EdgeCloseness edges = measure_edges(tessera_msaa, tessera_single, gl_msaa, gl_single);
+    const EdgeCloseness mirrored = measure_edges(tessera_msaa, tessera_single, gl_msaa_mirrored, gl.render(single));
+    const double moved_fraction = double(in.moved) / double(a.pixels);
+    MESSAGE("4x vs llvmpipe 4x (aligned samples): " << 100.0 * a.agreeing_fraction() << "% within 2/255 ("
+            << 100.0 * double(a.exact) / double(a.pixels) << "% identical); " << a.disagreeing << " further off, "
+            << a.on_silhouette << " on a silhouette; max " << a.max_difference << "/255 at (" << a.max_x << ", "
+            << a.max_y << ")");
+    MESSAGE("interior: " << in.moved << " pixels (" << 100.0 * moved_fraction
+            << "%) changed by Tessera's MSAA (shaded off-centre), " << in.moved_off
+            << " of them further off; max difference elsewhere " << in.max_unmoved_difference << "/255");
+    MESSAGE("edge pixels (llvmpipe 4x != 1x): " << edges.pixels << "; mean difference to llvmpipe 4x: Tessera 4x "
+            << edges.msaa_mean << "/255, Tessera 1x " << edges.single_mean << "/255; against the mirrored pattern "
+            << mirrored.msaa_mean << "/255");
+
+    const bool passed = a.agreeing_fraction() >= kMinAgreeingFraction &&
+                        in.max_unmoved_difference <= kMaxInteriorDifference &&
+                        moved_fraction <= kMaxMovedInteriorFraction &&
+                        edges.msaa_mean <= kMaxEdgeDifferenceRatio * edges.single_mean &&
+                        edges.msaa_mean < mirrored.msaa_mean;
+    if (!passed)
+        MESSAGE("images: " << write_failure_images(tessera_msaa, gl_msaa, "spheres_msaa"));
+    CHECK(a.agreeing_fraction() >= kMinAgreeingFraction);
+    CHECK(in.max_unmoved_difference <= kMaxInteriorDifference);
+    CHECK(moved_fraction <= kMaxMovedInteriorFraction);
+    CHECK(edges.msaa_mean <= kMaxEdgeDifferenceRatio * edges.single_mean);
+    CHECK(edges.msaa_mean < mirrored.msaa_mean);  // the aligned pattern is the right one
+}
