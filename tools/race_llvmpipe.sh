@@ -4,6 +4,8 @@
 #   tools/race_llvmpipe.sh [SCENE] [WIDTH HEIGHT] [THREADS] [FRAMES]
 # Defaults: scenes/spheres.toml 1280 720, 2 threads, 30 frames. SCENE may be a path or a
 # name in scenes/. BUILD_DIR overrides the build folder (default build/, Release).
+# MSAA=1|4 overrides the scene's output.msaa in both (--msaa); unset, both use the
+# scene's own. With 4x, llvmpipe's frame includes its resolve blit, as Tessera's does.
 # The two alternate for several rounds (ROUNDS, default 3) so both see the same machine
 # noise; the result is the median over rounds of each one's median frame time, and
 # llvmpipe/tessera (above 1: Tessera is faster). Frame times exclude readback and file output.
@@ -11,6 +13,10 @@ set -euo pipefail
 source "$(dirname "$0")/bench_args.sh"
 parse_bench_args race_llvmpipe "$@"
 rounds="${ROUNDS:-3}"
+msaa_args=()
+if [ -n "${MSAA:-}" ]; then
+  case "$MSAA" in 1|4) msaa_args=(--msaa "$MSAA") ;; *) echo "race_llvmpipe: MSAA must be 1 or 4, not $MSAA" >&2; exit 1 ;; esac
+fi
 
 # Builds if needed: configure once, then an incremental build of the two binaries.
 build_targets tessera tessera_gl_reference_cli
@@ -23,16 +29,17 @@ field() {  # field JSON NAME: one top-level number from a JSON object
   python3 -c 'import json, sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"
 }
 
-echo "race: $(basename "$scene") ${width}x${height}, $threads threads, $frames frames, $rounds rounds"
+echo "race: $(basename "$scene") ${width}x${height}, msaa ${MSAA:-as the scene}, $threads threads, $frames frames, $rounds rounds"
 tessera_medians=()
 llvmpipe_medians=()
 for round in $(seq 1 "$rounds"); do
   t_json="$("$build/tessera" bench "$scene" --width "$width" --height "$height" --threads "$threads" \
-    --frames "$frames" --json)"
+    --frames "$frames" "${msaa_args[@]}" --json)"
   # A high trim threshold stops glibc returning llvmpipe's large per-frame scene
   # allocations to the kernel each frame (which would time page faults, not rendering).
   g_json="$(LP_NUM_THREADS="$threads" GLIBC_TUNABLES=glibc.malloc.trim_threshold=1073741824 \
-    "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" --json)"
+    "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" "${msaa_args[@]}" \
+    --json)"
   t_ms="$(field "$t_json" frame_ms_median)"
   g_ms="$(field "$g_json" frame_ms_median)"
   tessera_medians+=("$t_ms")
@@ -40,7 +47,8 @@ for round in $(seq 1 "$rounds"); do
   printf '  round %d: tessera %9.2f ms   llvmpipe %9.2f ms   ratio %5.2f\n' "$round" "$t_ms" "$g_ms" \
     "$(python3 -c 'import sys; print(float(sys.argv[2]) / float(sys.argv[1]))' "$t_ms" "$g_ms")"
 done
-echo "  (tessera: $(field "$t_json" isa) kernels, $(field "$t_json" threads) threads; $(field "$g_json" renderer), LP_NUM_THREADS=$threads)"
+echo "  (tessera: $(field "$t_json" isa) kernels, $(field "$t_json" threads) threads, msaa $(field "$t_json" msaa);" \
+  "$(field "$g_json" renderer), LP_NUM_THREADS=$threads, msaa $(field "$g_json" msaa))"
 
 python3 - "${tessera_medians[*]}" "${llvmpipe_medians[*]}" <<'PY'
 import statistics, sys
