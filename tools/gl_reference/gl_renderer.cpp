@@ -452,7 +452,8 @@ struct GlReferenceRenderer::State {
         const glm::mat4 view = view_matrix(scene.camera);
         glm::mat4 projection = projection_matrix(scene.camera, scene.width, scene.height);
         // Upside down in window space, so the image's top row is window row 0.
-        if (origin == WindowOrigin::top_left) projection = glm::scale(glm::mat4(1.0f), {1.0f, -1.0f, 1.0f}) * projection;
+        if (origin == WindowOrigin::top_left)
+            projection = glm::scale(glm::mat4(1.0f), {1.0f, -1.0f, 1.0f}) * projection;
         glUniformMatrix4fv(u.view, 1, GL_FALSE, glm::value_ptr(view));
         glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
         glUniform3fv(u.cam_pos, 1, glm::value_ptr(scene.camera.position));
@@ -496,7 +497,8 @@ struct GlReferenceRenderer::State {
 
     // The colour attachment as RGBA8, row 0 at the top (GL's row 0 is the bottom, unless
     // the frame was drawn with WindowOrigin::top_left).
-    std::vector<std::uint8_t> read_rgba_top_down(int width, int height, WindowOrigin origin = WindowOrigin::bottom_left) {
+    std::vector<std::uint8_t> read_rgba_top_down(int width, int height,
+                                                 WindowOrigin origin = WindowOrigin::bottom_left) {
         std::vector<std::uint8_t> bottom_up(std::size_t(width) * std::size_t(height) * 4);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
         glReadBuffer(GL_COLOR_ATTACHMENT0);

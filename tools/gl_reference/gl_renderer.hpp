@@ -40,7 +40,8 @@ public:
     GlReferenceRenderer(const GlReferenceRenderer&) = delete;
     GlReferenceRenderer& operator=(const GlReferenceRenderer&) = delete;
 
-    // One frame (multisampled and resolved if scene.msaa is 4), read back: `display` is RGB8, row 0 at the top (as Tessera's);
+    // One frame (multisampled and resolved if scene.msaa is 4), read back: `display` is
+    // RGB8, row 0 at the top (as Tessera's);
     // `radiance` stays empty (the reference shader only writes the tonemapped colour).
     RenderedImage render(const Scene& scene, WindowOrigin origin = WindowOrigin::bottom_left);
 
