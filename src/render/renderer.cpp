@@ -177,6 +177,8 @@ struct Renderer::Frame {
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
     void render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    template <class Reset, class Rasterize>
+    bool rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const;
     template <class Gather, class Resolve>
     void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, const raster::TileRect& rect, bool drawn,
                            Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve);
@@ -370,18 +372,18 @@ void Renderer::Frame::describe_for_textures(const raster::RasterTriangle& t, con
     for (int k = 0; k < 3; ++k) corners.tangent[k] = &tangents[t.vertex[k]];
 }
 
-void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
-    const raster::TileRect rect = grid.rect(tile);
-    const auto t0 = Clock::now();
-
-    // Rasterize: every chunk's triangles for this tile, in submission order.
+// Rasterizes every chunk's triangles for this tile, in submission order:
+// reset() clears the tile's buffers before the first one, rasterize(t, id)
+// draws one. Returns whether any fragment passed the depth test.
+template <class Reset, class Rasterize>
+bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const {
     const std::uint64_t passed_before = s.counters.depth_passed;
-    bool reset = false;
+    bool is_reset = false;
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const render::Chunk& chunk = chunks[c];
         const std::span<const std::uint32_t> bin = chunk.bins.tile(tile);
         for (std::size_t i = 0; i < bin.size(); ++i) {
-            if (!reset) s.raster.reset(grid.tile_size), reset = true;
+            if (!is_reset) reset(), is_reset = true;
             // A tile's triangles lie scattered through the chunk: fetch ahead.
             constexpr std::size_t kPrefetchDistance = 8;
             if (i + kPrefetchDistance < bin.size()) {
@@ -389,15 +391,24 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 __builtin_prefetch(ahead);
                 __builtin_prefetch(ahead + 63);  // a record may straddle two cache lines
             }
-            const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | bin[i];
             const raster::RasterTriangle& t = chunk.assembled.triangles[bin[i]];
             const std::uint64_t passed = s.counters.depth_passed;
-            raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+            rasterize(t, (std::uint32_t(c) << render::kChunkIdShift) | bin[i]);
             if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
         }
     }
+    return s.counters.depth_passed != passed_before;
+}
+
+void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
+    const raster::TileRect rect = grid.rect(tile);
+    const auto t0 = Clock::now();
+    const bool drawn = rasterize_bins(tile, s, [&] { s.raster.reset(grid.tile_size); },
+                                      [&](const raster::RasterTriangle& t, std::uint32_t id) {
+                                          raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+                                      });
     shade_and_resolve(
-        scene, clear, rect, s.counters.depth_passed != passed_before, t0, s,
+        scene, clear, rect, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
                 s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
@@ -414,21 +425,12 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
 void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
-    const std::uint64_t passed_before = s.counters.depth_passed;
-    bool reset = false;
-    for (std::size_t c = 0; c < chunk_count; ++c) {
-        const render::Chunk& chunk = chunks[c];
-        for (const std::uint32_t index : chunk.bins.tile(tile)) {
-            if (!reset) s.samples.reset(grid.tile_size), reset = true;
-            const std::uint32_t id = (std::uint32_t(c) << render::kChunkIdShift) | index;
-            const raster::RasterTriangle& t = chunk.assembled.triangles[index];
-            const std::uint64_t passed = s.counters.depth_passed;
-            raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
-            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
-        }
-    }
+    const bool drawn = rasterize_bins(tile, s, [&] { s.samples.reset(grid.tile_size); },
+                                      [&](const raster::RasterTriangle& t, std::uint32_t id) {
+                                          raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+                                      });
     shade_and_resolve(
-        scene, clear, rect, s.counters.depth_passed != passed_before, t0, s,
+        scene, clear, rect, drawn, t0, s,
         [&] {  // one fragment per pixel and visible triangle
             raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
                 return triangle_of(id);
