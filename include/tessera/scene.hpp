@@ -152,7 +152,7 @@ struct Scene {
     int width = 1280;    // output size in pixels, 1..kMaxImageDimension
     int height = 720;
     glm::vec3 clear_color{0.1f, 0.1f, 0.1f};  // display-referred, as glClearColor
-    // Samples per pixel: 1, or 4 for 4× MSAA (standard sample pattern, shading
+    // Samples per pixel: 1, or 4 for 4× MSAA (GL's sample pattern, shading
     // once per pixel and triangle; see src/raster/msaa.hpp). A property of the
     // output like its size, so it lives here; the CLI's --msaa overrides it.
     int msaa = 1;

@@ -15,14 +15,14 @@ namespace tessera::raster {
 
 inline constexpr int kMsaaSamples = 4;
 
-// The standard 4× pattern (D3D's and Vulkan's standard sample locations) in
-// image space, y measured down from the top of the pixel, in 1/8 pixel:
-// (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875). As offsets
-// from the pixel centre in 24.8 fixed point they are exact multiples of 32.
-// (GL's llvmpipe uses the same numbers in window space, y up, i.e. this
-// pattern mirrored top to bottom as seen on screen.)
+// GL's 4× pattern, as llvmpipe reports it (GL_SAMPLE_POSITION) in window space,
+// y up from the pixel's bottom: (0.375, 0.125), (0.875, 0.375), (0.125, 0.625),
+// (0.625, 0.875) — the standard numbers of D3D and Vulkan, which measure y down
+// instead. In image space (y down from the pixel's top) they are (0.375, 0.875),
+// (0.875, 0.625), (0.125, 0.375), (0.625, 0.125); as offsets from the pixel
+// centre in 24.8 fixed point, exact multiples of 32.
 inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetX = {-32, 96, -96, 32};
-inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetY = {-96, -32, 32, 96};
+inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetY = {96, 32, -32, -96};
 
 // Per-sample results of rasterizing one tile: sample s of tile pixel p at
 // [kMsaaSamples · p + s]. Owned by a worker and reused from tile to tile.
@@ -37,9 +37,9 @@ struct TileSamples {
 
 // The pixels' fragments: one per pixel and distinct triangle among its
 // covered samples, pixels in row-major order, a pixel's fragments in the order
-// of their first sample. λ1 λ2: the screen-space barycentrics at the shading
-// position — the pixel centre if the triangle covers it, else its first
-// covered sample (like centroid sampling).
+// of their first sample. λ1 λ2: the screen-space barycentrics at the pixel
+// centre, extrapolated where the triangle misses it — GL's interpolation of
+// varyings not qualified `centroid`, as in the reference shader.
 struct TileFragments {
     std::vector<std::uint16_t> x, y;  // tile-relative pixel
     std::vector<std::uint32_t> triangle;
@@ -81,14 +81,11 @@ void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& 
                 while (k < out.count && out.triangle[k] != id) ++k;
                 samples.fragment[first + s] = std::int32_t(k);
                 if (k < out.count) continue;
-                // A new triangle in this pixel: shade at the centre if it covers it, else here.
+                // A new triangle in this pixel: shaded at the pixel centre.
                 const RasterTriangle& t = triangle_of(id);
-                const std::int64_t cx = std::int64_t(rect.x0 + x) * kSubpixelScale + kSubpixelScale / 2;
-                const std::int64_t cy = std::int64_t(rect.y0 + y) * kSubpixelScale + kSubpixelScale / 2;
-                const bool centre = covers_point(t, cx, cy);
                 const auto [l1, l2] =
-                    centre ? screen_barycentrics(t, cx, cy)
-                           : screen_barycentrics(t, cx + kSampleOffsetX[s], cy + kSampleOffsetY[s]);
+                    screen_barycentrics(t, std::int64_t(rect.x0 + x) * kSubpixelScale + kSubpixelScale / 2,
+                                        std::int64_t(rect.y0 + y) * kSubpixelScale + kSubpixelScale / 2);
                 out.x[k] = std::uint16_t(x), out.y[k] = std::uint16_t(y), out.triangle[k] = id;
                 out.lambda1[k] = l1, out.lambda2[k] = l2;
                 ++out.count;

@@ -37,12 +37,13 @@ struct MsaaTile {
 
 }  // namespace
 
-// Image space, y down from the pixel's top: s0 (0.375, 0.125), s1 (0.875, 0.375),
-// s2 (0.125, 0.625), s3 (0.625, 0.875). A tiny triangle around one of them
-// covers that sample of pixel (1, 2) and nothing else, and no pixel centre.
+// Image space, y down from the pixel's top: s0 (0.375, 0.875), s1 (0.875, 0.625),
+// s2 (0.125, 0.375), s3 (0.625, 0.125) — GL's pattern, which GL gives y up from
+// the pixel's bottom. A tiny triangle around one of them covers that sample of
+// pixel (1, 2) and nothing else, and no pixel centre.
 TEST_CASE("4x MSAA: a tiny triangle around one sample position covers exactly that sample") {
-    const std::array<glm::vec2, 4> position = {glm::vec2(0.375f, 0.125f), glm::vec2(0.875f, 0.375f),
-                                               glm::vec2(0.125f, 0.625f), glm::vec2(0.625f, 0.875f)};
+    const std::array<glm::vec2, 4> position = {glm::vec2(0.375f, 0.875f), glm::vec2(0.875f, 0.625f),
+                                               glm::vec2(0.125f, 0.375f), glm::vec2(0.625f, 0.125f)};
     for (int target = 0; target < 4; ++target) {
         CAPTURE(target);
         const glm::vec2 p = glm::vec2(1, 2) + position[target];
@@ -54,13 +55,17 @@ TEST_CASE("4x MSAA: a tiny triangle around one sample position covers exactly th
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x)
                 for (int s = 0; s < 4; ++s) CHECK(tile.covered(x, y, s) == (x == 1 && y == 2 && s == target));
-        // One fragment, shaded at the sample (the centre is not covered).
+        // One fragment, shaded at the pixel centre although the triangle misses it
+        // (extrapolated, as GL interpolates varyings not qualified centroid).
         REQUIRE(tile.fragments.count == 1);
         CHECK(tile.fragments.x[0] == 1);
         CHECK(tile.fragments.y[0] == 2);
+        const auto at_centre = raster::screen_barycentrics(*t, 256 + 128, 2 * 256 + 128);
+        CHECK(tile.fragments.lambda1[0] == at_centre[0]);
+        CHECK(tile.fragments.lambda2[0] == at_centre[1]);
         const auto at_sample = raster::screen_barycentrics(*t, std::int64_t(p.x * 256), std::int64_t(p.y * 256));
-        CHECK(tile.fragments.lambda1[0] == at_sample[0]);
-        CHECK(tile.fragments.lambda2[0] == at_sample[1]);
+        CHECK(at_sample != at_centre);  // so the checks above tell the two apart
+
     }
 }
 

@@ -17,11 +17,11 @@
 
 namespace tessera::gl_reference {
 
-// Where the image's row 0 lies in GL's window space. bottom_left is plain OpenGL. top_left
-// draws the scene upside down in window space (projection y negated) and reads the rows
-// back unflipped: the same image, but GL's window-space sample positions (y up) then
-// read y down from the pixel's top, as Tessera's and D3D/Vulkan's do. llvmpipe's 4×
-// pattern lands on Tessera's this way instead of on its mirror image.
+// Where the image's row 0 lies in GL's window space. bottom_left is plain OpenGL, whose 4×
+// sample positions are Tessera's. top_left draws the scene upside down in window space
+// (projection y negated) and reads the rows back unflipped: the same image, but with
+// the sample pattern mirrored top to bottom (as D3D/Vulkan place the same numbers); the
+// MSAA cross-check uses it to show that the unmirrored pattern is the one that matches.
 enum class WindowOrigin { bottom_left, top_left };
 
 // Owns one EGL display + GL 3.3 core context (current on the constructing thread;
