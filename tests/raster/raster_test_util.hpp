@@ -1,6 +1,8 @@
 // Building raster-stage triangles straight from screen positions.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <vector>
 
 #include "raster/tile_rasterizer.hpp"
@@ -17,13 +19,20 @@ inline glm::vec4 clip_for_screen(float x, float y, float depth, float w, int wid
     return {ndc_x * w, ndc_y * w, ndc_z * w, w};
 }
 
+// Triangle setup of image points a, b, c (y down) of a size×size image, at
+// window depths `depths` (corner by corner), with clip w = 1.
+inline std::optional<raster::RasterTriangle> screen_triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, int size,
+                                                             const std::array<float, 3>& depths) {
+    return raster::setup_triangle({size, size},
+                                  {clip_for_screen(a.x, a.y, depths[0], 1, size, size),
+                                   clip_for_screen(b.x, b.y, depths[1], 1, size, size),
+                                   clip_for_screen(c.x, c.y, depths[2], 1, size, size)},
+                                  {0, 1, 2});
+}
+
 inline std::optional<raster::RasterTriangle> screen_triangle(glm::vec2 a, glm::vec2 b, glm::vec2 c, int size,
                                                              float depth = 0.5f) {
-    return raster::setup_triangle({size, size},
-                                  {clip_for_screen(a.x, a.y, depth, 1, size, size),
-                                   clip_for_screen(b.x, b.y, depth, 1, size, size),
-                                   clip_for_screen(c.x, c.y, depth, 1, size, size)},
-                                  {0, 1, 2});
+    return screen_triangle(a, b, c, size, {depth, depth, depth});
 }
 
 // 1 for each pixel of a size×size image whose centre the triangle covers.

@@ -74,11 +74,7 @@ TEST_CASE("every ISA's rasterizer gives bit-identical tile buffers to the scalar
         };
         const glm::vec2 a = corner(), b = corner(), c = corner();
         const int image = 256;
-        auto t = raster::setup_triangle({image, image},
-                                        {test::clip_for_screen(a.x, a.y, depth(rng), 1, image, image),
-                                         test::clip_for_screen(b.x, b.y, depth(rng), 1, image, image),
-                                         test::clip_for_screen(c.x, c.y, depth(rng), 1, image, image)},
-                                        {0, 1, 2});
+        auto t = test::screen_triangle(a, b, c, image, {depth(rng), depth(rng), depth(rng)});
         if (t) triangles.push_back(*t);
     }
     const raster::TileBuffers reference = check_isas_match_scalar(triangles, {64, 64, 64 + kTile, 64 + kTile});
@@ -151,11 +147,7 @@ TEST_CASE("block hierarchy: huge triangles, slivers and ties on block borders ma
                     break;
                 }
             }
-            auto t = raster::setup_triangle({kImage, kImage},
-                                            {test::clip_for_screen(a.x, a.y, unit(rng), 1, kImage, kImage),
-                                             test::clip_for_screen(b.x, b.y, unit(rng), 1, kImage, kImage),
-                                             test::clip_for_screen(c.x, c.y, unit(rng), 1, kImage, kImage)},
-                                            {0, 1, 2});
+            auto t = test::screen_triangle(a, b, c, kImage, {unit(rng), unit(rng), unit(rng)});
             if (t) triangles.push_back(*t);
         }
         const raster::TileBuffers reference = check_isas_match_scalar(triangles, tile);
