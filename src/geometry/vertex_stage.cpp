@@ -29,16 +29,19 @@ void shade_vertices(const Mesh& mesh, std::size_t first, const glm::mat4& model,
 void run_vertex_stage(simd::Isa isa, const Mesh& mesh, std::size_t first, const glm::mat4& model,
                       const glm::mat4& view_projection, const GuardBand& guard, const Viewport& viewport,
                       const VertexRun& out) {
+    if (out.vertices.empty()) return;
     if (isa == simd::Isa::scalar) {
         shade_vertices(mesh, first, model, view_projection, out.vertices);
         for (std::size_t i = 0; i < out.vertices.size(); ++i) {
             out.outcodes[i] = outcode(out.vertices[i], guard);
-            if (!(out.outcodes[i] & (kClipPlaneBits | kNotFinite))) out.screen[i] = to_screen(out.vertices[i].clip_pos, viewport);
+            if (!(out.outcodes[i] & (kClipPlaneBits | kNotFinite)))
+                out.screen[i] = to_screen(out.vertices[i].clip_pos, viewport);
         }
         return;
     }
     static_assert(sizeof(ShadedVertex) == 12 * sizeof(float) && offsetof(ShadedVertex, world_pos) == 4 * sizeof(float) &&
-                      offsetof(ShadedVertex, normal) == 7 * sizeof(float) && offsetof(ShadedVertex, uv) == 10 * sizeof(float),
+                      offsetof(ShadedVertex, normal) == 7 * sizeof(float) &&
+                      offsetof(ShadedVertex, uv) == 10 * sizeof(float),
                   "the vertex kernels write ShadedVertex as 12 floats");
     static_assert(sizeof(ScreenVertex) == 4 * sizeof(std::int32_t), "the vertex kernels write ScreenVertex as 4 int32");
     assert(first + out.vertices.size() <= mesh.positions.size() && mesh.normals.size() == mesh.positions.size());

@@ -28,7 +28,8 @@ struct TriangleInTile {
     EdgeStepper e0, e1, e2;              // edge k is opposite corner k: its value is corner k's weight × area
 };
 
-[[gnu::always_inline]] inline std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
+[[gnu::always_inline]] inline
+std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
     const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
     const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return std::nullopt;
@@ -100,7 +101,8 @@ BlockCoverage block_coverage(const TriangleInTile& b) {
 namespace {
 
 // The scalar loop: one pixel centre at a time, edge values in int64.
-[[gnu::always_inline]] inline void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
+[[gnu::always_inline]] inline
+void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
                       const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
     EdgeStepper e0 = placed.e0, e1 = placed.e1, e2 = placed.e2;
     const float inv_area = t.inv_area;
@@ -137,7 +139,8 @@ void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, cons
 namespace {
 
 // What the kernels need besides the edges, for block p of triangle t.
-[[gnu::always_inline]] inline EdgeBlock32 kernel_block(const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
+[[gnu::always_inline]] inline
+EdgeBlock32 kernel_block(const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
                          const TileRect& tile) {
     EdgeBlock32 block;
     block.x_begin = p.x_begin - tile.x0, block.x_end = p.x_end - tile.x0;
@@ -150,7 +153,8 @@ namespace {
     return block;
 }
 
-[[gnu::always_inline]] inline void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide, TileBuffers& buffers,
+[[gnu::always_inline]] inline
+void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide, TileBuffers& buffers,
                 RasterCounters& counters) {
     const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
                         buffers.side};
@@ -164,7 +168,8 @@ namespace {
 
 // Block p with every edge value in int32 (fits_int32(p)). Inlined: the
 // whole-box path of medium triangles pays for every call (raster/*/medium).
-[[gnu::always_inline]] inline void rasterize_int32(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, bool fully_covered,
+[[gnu::always_inline]] inline
+void rasterize_int32(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, bool fully_covered,
                      std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
     EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
     const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
