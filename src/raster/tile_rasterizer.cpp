@@ -96,10 +96,6 @@ BlockCoverage block_coverage(const TriangleInTile& b) {
     return full ? BlockCoverage::full : BlockCoverage::partial;
 }
 
-}  // namespace
-
-namespace {
-
 // The scalar loop: one pixel centre at a time, edge values in int64.
 [[gnu::always_inline]] inline
 void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
@@ -232,8 +228,8 @@ void rasterize_run(simd::Isa isa, const RasterTriangle& t, const TriangleInTile&
     }
 }
 
-// Out of line, like rasterize_int32(), so that the dispatcher's path for tiny
-// triangles (most of a finely tessellated mesh) stays short.
+// Out of line, so that the dispatcher's path for tiny triangles (most of a
+// finely tessellated mesh) stays short.
 [[gnu::noinline]] void rasterize_hierarchical(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& placed,
                             std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
                             RasterCounters& counters) {

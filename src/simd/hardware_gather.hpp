@@ -1,11 +1,13 @@
 // base[index[lane]] for every lane, with the hardware gather (vpgatherdd /
 // vgatherdps) on AVX2 and AVX-512: xsimd 8.1's batch::gather loads lane by lane.
-// For kernel sources only (after simd/kernel_prelude.hpp): the #if picks the
-// instruction by the -march this copy is built with.
+// For kernel sources only (compiled per ISA): the #if picks the instruction by
+// the -march this copy is built with.
 #pragma once
 
 #include <cstdint>
 #include <type_traits>
+
+#include "simd/kernel_prelude.hpp"
 
 namespace tessera::simd {
 

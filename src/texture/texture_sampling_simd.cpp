@@ -1,7 +1,7 @@
 // Texture::sample_trilinear (texture.cpp) over xsimd batches: one fragment per
 // lane, each lane with its own level pair, so the per-level sizes and offsets
-// are gathered from the TextureView tables and the texels by `batch::gather`
-// (vgatherdps on AVX2/AVX-512; xsimd 8.1 loads lane by lane on SSE4.2).
+// are gathered from the TextureView tables, and the texels by
+// simd::hardware_gather (vgatherdps on AVX2/AVX-512, lane by lane on SSE4.2).
 // Compiled once per ISA like shade_kernels_simd.cpp; entry points carry
 // TESSERA_SIMD_SUFFIX, everything else is in an anonymous namespace.
 //
@@ -41,8 +41,6 @@ Texels<N> lerp(const Texels<N>& t0, const Texels<N>& t1, const Batch& weight) {
     for (int k = 0; k < N; ++k) result.c[k] = keep * t0.c[k] + weight * t1.c[k];
     return result;
 }
-
-Batch gather(const float* base, const IntBatch& index) { return simd::hardware_gather(base, index); }
 
 // min(max(x, lo), hi): the hardware max returns its second operand for NaN, so NaN → lo.
 Batch clamp_nan_low(const Batch& x, const Batch& lo, const Batch& hi) { return xsimd::min(xsimd::max(x, lo), hi); }
@@ -90,7 +88,7 @@ template <int N>
 Texels<N> fetch(const float* texels, const IntBatch& index) {
     const IntBatch base = index * IntBatch(4);
     Texels<N> result;
-    for (int k = 0; k < N; ++k) result.c[k] = gather(texels + k, base);
+    for (int k = 0; k < N; ++k) result.c[k] = simd::hardware_gather(texels + k, base);
     return result;
 }
 
