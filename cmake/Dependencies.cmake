@@ -1,7 +1,6 @@
 # Every dependency comes from a Debian 12 package (see tools/install_dependencies.sh).
 find_package(glm CONFIG REQUIRED)
 find_package(TBB CONFIG REQUIRED)
-find_package(OpenImageIO CONFIG REQUIRED)
 find_package(xsimd CONFIG REQUIRED)
 find_package(tomlplusplus CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
@@ -14,14 +13,12 @@ if(NOT TARGET xtl)
   set_target_properties(xsimd PROPERTIES INTERFACE_LINK_LIBRARIES "")
 endif()
 
-# Debian's OpenImageIO target lists /usr/include/opencv4, which does not exist
-# without OpenCV's headers; CMake refuses non-existent include paths.
-foreach(oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
-  if(TARGET ${oiio_target})
-    get_target_property(oiio_includes ${oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
-    if(oiio_includes)
-      list(FILTER oiio_includes EXCLUDE REGEX "opencv4")
-      set_target_properties(${oiio_target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${oiio_includes}")
-    endif()
-  endif()
-endforeach()
+# OpenImageIO comes from its pkg-config file, not its CMake package: Debian's
+# OpenImageIOTargets.cmake also imports the command-line tools (/usr/bin/iconvert…,
+# package openimageio-tools) and loads Imath's package, which imports a Python module
+# (python3-imath). On a fresh machine without those two packages, find_package(OpenImageIO)
+# stops at configure and Imath warns; installing them would pull in Qt and numpy for
+# nothing we use. The .pc file names exactly the libraries we link.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OpenImageIO REQUIRED IMPORTED_TARGET GLOBAL OpenImageIO)
+add_library(OpenImageIO::OpenImageIO ALIAS PkgConfig::OpenImageIO)
