@@ -16,6 +16,8 @@ if [ "${1:-all}" != render ]; then
     libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
     # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
     clang libclang-rt-14-dev
+    # The fresh-machine check (tools/fresh_machine_check.sh): minimal Debian 12 roots.
+    mmdebstrap
   )
 fi
 missing=()
