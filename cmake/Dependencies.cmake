@@ -5,6 +5,7 @@ find_package(xsimd CONFIG REQUIRED)
 find_package(tomlplusplus CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)
 # doctest is found in tests/, only when the tests are built.
 
 # Debian's xsimd target links a library "xtl" that the package does not ship

@@ -46,6 +46,9 @@ struct RenderSettings {
     // AOV planes to fill in RenderedImage::aov. None by default: a frame
     // without AOVs neither allocates nor writes them.
     AovSet aovs{};  // (an initializer, or designated initializers that leave it out warn)
+    // Record the frame's timeline (Renderer::last_frame_profile): a span per pass,
+    // chunk and tile, for traces and cost heat maps. Off, nothing is recorded.
+    bool profile = false;
 };
 
 // The AOV planes of a frame, row-major like the radiance, row 0 at the top.
@@ -106,6 +109,33 @@ struct FrameStats {
     double resolve_ms = 0;      // tonemap, quantize, write the images
 };
 
+// One timed piece of a frame, as recorded with RenderSettings::profile.
+struct ProfileSpan {
+    enum class Kind : std::uint8_t { pass, chunk, tile };
+    Kind kind = Kind::pass;
+    const char* name = "";  // pass: "vertex", "triangles" or "tiles"; chunk: "chunk"; tile: "tile"
+    int worker = 0;         // oneTBB's slot (0..threads-1) of the thread that ran it
+    int index = -1;         // chunk or tile number; -1 for a pass
+    double start_ms = 0;    // from the start of the frame
+    double end_ms = 0;
+    // A tile's three steps, one after the other from start_ms; they add up to its span.
+    double rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
+    std::uint64_t triangles = 0;  // chunk: triangles submitted; tile: triangles rasterized in it
+    std::uint64_t fragments = 0;  // tile: visible fragments shaded
+    std::uint32_t lights = 0;     // tile: lights shaded there, after culling
+};
+
+// A frame's timeline: the passes, then every chunk and tile span sorted by
+// worker and start. Spans of one worker never overlap; chunks lie inside the
+// triangle pass and tiles inside the tile pass, and the passes add up to the frame.
+struct FrameProfile {
+    int threads = 0;
+    int width = 0, height = 0;       // the image, pixels
+    int tile_size = 0, tiles_x = 0, tiles_y = 0;
+    double total_ms = 0;
+    std::vector<ProfileSpan> spans;
+};
+
 // Renders scenes, keeping its frame memory from one frame to the next.
 class Renderer {
 public:
@@ -117,6 +147,8 @@ public:
     // The returned image stays valid until the next render().
     const RenderedImage& render(const Scene& scene);
     const FrameStats& last_frame_stats() const;
+    // The last frame's timeline; empty unless RenderSettings::profile is set.
+    const FrameProfile& last_frame_profile() const;
     std::string isa_name() const;  // the shading kernels in use
     int threads() const;
 

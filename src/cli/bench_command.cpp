@@ -1,11 +1,14 @@
 #include "cli/bench_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <vector>
 
 #include <sys/resource.h>
 
+#include "profile/frame_profile_output.hpp"
+#include "tessera/image_io.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::cli {
@@ -39,6 +42,9 @@ int run_bench(const BenchCommand& cmd) {
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;
     RenderSettings settings = cmd.settings;
     settings.keep_radiance = cmd.keep_radiance;
+    const bool profiling = !cmd.trace_path.empty() || !cmd.heatmap_path.empty();
+    const profile::HeatmapMetric heatmap_metric = profile::parse_heatmap_metric(cmd.heatmap_metric);
+    settings.profile = profiling;
     Renderer renderer(settings);
     for (int i = 0; i < cmd.warmup; ++i) renderer.render(scene);
 
@@ -58,16 +64,28 @@ int run_bench(const BenchCommand& cmd) {
                                {"tiles", &FrameStats::tiles_ms, {}}};
     std::vector<double> total;
     total.reserve(std::size_t(cmd.frames));
+    std::vector<profile::TracedFrame> traced;  // with --trace/--heatmap: every timed frame's timeline
+    if (profiling) traced.reserve(std::size_t(cmd.frames));
+    const auto run_start = std::chrono::steady_clock::now();
     for (Series& stage : stages) stage.samples.reserve(std::size_t(cmd.frames));
     // Steady state allocates nothing: the peak after warm-up must not grow.
     const double rss_after_warmup = peak_rss_mib();
     for (int i = 0; i < cmd.frames; ++i) {
+        const auto frame_start = std::chrono::steady_clock::now();
         renderer.render(scene);
+        if (profiling)
+            traced.push_back({std::chrono::duration<double, std::milli>(frame_start - run_start).count(),
+                              renderer.last_frame_profile()});
         const FrameStats& s = renderer.last_frame_stats();
         total.push_back(s.total_ms);
         for (Series& stage : stages) stage.samples.push_back(s.*stage.field);
     }
     const double rss_peak = peak_rss_mib();
+    if (!cmd.trace_path.empty()) profile::write_chrome_trace(traced, "tessera bench " + cmd.scene_path, cmd.trace_path);
+    if (!cmd.heatmap_path.empty()) {
+        const RenderedImage& last = renderer.render(scene);  // the picture under the tint (not timed)
+        write_image(profile::make_tile_heatmap(last, traced, heatmap_metric), cmd.heatmap_path);
+    }
     const FrameStats& s = renderer.last_frame_stats();  // counts are the same every frame
     const Summary frame = summarize(total);
     const double light_count = double(std::max<std::size_t>(scene.lights.size(), 1));
@@ -108,6 +126,13 @@ int run_bench(const BenchCommand& cmd) {
     std::printf("%.1f Mfragments/s shaded; %.2f ns per fragment-light (shading step, one thread)\n", mfrag_per_s,
                 ns_per_fragment_light);
     std::printf("peak memory %.1f MiB; growth over the timed frames %.1f MiB\n", rss_peak, rss_peak - rss_after_warmup);
+    if (!cmd.trace_path.empty())
+        std::printf("trace of the %d timed frames: %s (open it in Perfetto or chrome://tracing)\n", cmd.frames,
+                    cmd.trace_path.c_str());
+    if (!cmd.heatmap_path.empty())
+        std::printf("heat map of tile %s: %s (ramp from 0 to %g)\n",
+                    heatmap_metric == profile::HeatmapMetric::time ? "time, ms" : "work, fragment-lights",
+                    cmd.heatmap_path.c_str(), profile::heatmap_ramp_end(traced, heatmap_metric));
     return 0;
 }
 

@@ -17,6 +17,9 @@ struct BenchCommand {
     int msaa = 0;  // 0: the scene's own
     bool json = false;
     bool keep_radiance = false;  // like a render to PNG; --radiance adds the EXR's HDR image
+    std::string trace_path;      // Chrome trace-event JSON of the timed frames, if set
+    std::string heatmap_path;    // PNG of the tiles' cost over the last frame, if set
+    std::string heatmap_metric = "time";  // time | work
     RenderSettings settings;
 };
 

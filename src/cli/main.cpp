@@ -188,6 +188,15 @@ int main(int argc, char** argv) {
     add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
     bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
+    bench_app->add_option("--trace", bench.trace_path,
+                          "Write the timed frames as a Chrome trace-event JSON file (Perfetto, chrome://tracing): "
+                          "a track per worker, a span per pass, chunk and tile");
+    bench_app->add_option("--heatmap", bench.heatmap_path,
+                          "Write a PNG of the frame with each tile tinted by its cost");
+    bench_app->add_option("--heatmap-metric", bench.heatmap_metric,
+                          "What the heat map shows: time (ms per tile, median of the timed frames) or work "
+                          "(fragments x lights per tile)")
+        ->check(CLI::IsMember({"time", "work"}));
 
     try {
         app.parse(argc, argv);

@@ -59,6 +59,9 @@ struct WorkerScratch {
     shade::ShadingLights tile_lights;  // the frame's lights that reach this tile (light culling)
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
+    std::uint64_t tile_triangles = 0;  // rasterized in the current tile (profile)
+    std::uint32_t tile_light_count = 0;  // lights shaded in the current tile (profile)
+    std::vector<ProfileSpan> spans;    // this worker's chunks and tiles, with RenderSettings::profile
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
     void reserve(int tile_side, int msaa) {
@@ -151,6 +154,8 @@ struct Renderer::Frame {
     std::optional<tbb::global_control> allow_oversubscription;
     tbb::task_arena arena;
     FrameStats stats;
+    FrameProfile profile;
+    Clock::time_point frame_start;  // the origin of profile spans
     RenderedImage image;
 
     std::vector<geometry::ShadedVertex> vertices;  // every object's vertices, object after object
@@ -177,10 +182,16 @@ struct Renderer::Frame {
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
     void render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    void record_span(WorkerScratch& s, ProfileSpan span, Clock::time_point start, Clock::time_point end) const {
+        span.worker = tbb::this_task_arena::current_thread_index();
+        span.start_ms = ms_between(frame_start, start), span.end_ms = ms_between(frame_start, end);
+        s.spans.push_back(span);
+    }
+    void collect_profile(Clock::time_point t1, Clock::time_point t2, Clock::time_point t3);
     template <class Reset, class Rasterize>
     bool rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const;
     template <class Gather, class Resolve>
-    void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, const raster::TileRect& rect, bool drawn,
+    void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, int tile, bool drawn,
                            Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
@@ -208,6 +219,7 @@ Renderer::Renderer(const RenderSettings& settings) {
 Renderer::~Renderer() = default;
 
 const FrameStats& Renderer::last_frame_stats() const { return frame_->stats; }
+const FrameProfile& Renderer::last_frame_profile() const { return frame_->profile; }
 std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame_->isa)); }
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
 
@@ -215,8 +227,11 @@ const RenderedImage& Renderer::render(const Scene& scene) {
     check_renderable(scene);
     Frame& f = *frame_;
     f.stats = {};
+    f.profile.spans.clear();
+    for (WorkerScratch& s : f.scratch) s.spans.clear();
     f.arena.execute([&] {
         const auto t0 = Clock::now();
+        f.frame_start = t0;
         f.run_vertex_stage(scene);
         const auto t1 = Clock::now();
         f.cut_into_chunks(scene);
@@ -228,8 +243,33 @@ const RenderedImage& Renderer::render(const Scene& scene) {
         f.stats.triangles_ms = ms_between(t1, t2);
         f.stats.tiles_ms = ms_between(t2, t3);
         f.stats.total_ms = ms_between(t0, t3);
+        if (f.settings.profile) f.collect_profile(t1, t2, t3);
     });
     return f.image;
+}
+
+// The passes on the calling thread's track, then every worker's spans.
+void Renderer::Frame::collect_profile(Clock::time_point t1, Clock::time_point t2, Clock::time_point t3) {
+    profile.threads = arena.max_concurrency();
+    profile.width = grid.width, profile.height = grid.height;
+    profile.tile_size = grid.tile_size, profile.tiles_x = grid.tiles_x, profile.tiles_y = grid.tiles_y;
+    profile.total_ms = stats.total_ms;
+    const int caller = tbb::this_task_arena::current_thread_index();
+    const auto pass = [&](const char* name, Clock::time_point start, Clock::time_point end) {
+        ProfileSpan span;
+        span.name = name, span.worker = caller;
+        span.start_ms = ms_between(frame_start, start), span.end_ms = ms_between(frame_start, end);
+        profile.spans.push_back(span);
+    };
+    pass("vertex", frame_start, t1);
+    pass("triangles", t1, t2);
+    pass("tiles", t2, t3);
+    const std::size_t passes = profile.spans.size();
+    for (const WorkerScratch& s : scratch) profile.spans.insert(profile.spans.end(), s.spans.begin(), s.spans.end());
+    std::sort(profile.spans.begin() + std::ptrdiff_t(passes), profile.spans.end(),
+              [](const ProfileSpan& a, const ProfileSpan& b) {
+                  return a.worker != b.worker ? a.worker < b.worker : a.start_ms < b.start_ms;
+              });
 }
 
 void Renderer::Frame::run_vertex_stage(const Scene& scene) {
@@ -310,8 +350,15 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
                                    chunk.assembled, scene.msaa);
         const auto t1 = Clock::now();
         chunk.bins.build(grid, chunk.assembled.triangles);
+        const auto t2 = Clock::now();
         s.clip_setup_ms += ms_between(t0, t1);
-        s.binning_ms += ms_between(t1, Clock::now());
+        s.binning_ms += ms_between(t1, t2);
+        if (settings.profile) {
+            ProfileSpan span;
+            span.kind = ProfileSpan::Kind::chunk, span.name = "chunk", span.index = int(c);
+            span.triangles = chunk.triangle_count;
+            record_span(s, span, t0, t2);
+        }
     });
     const double threads = arena.max_concurrency();
     for (const WorkerScratch& s : scratch)
@@ -378,10 +425,12 @@ void Renderer::Frame::describe_for_textures(const raster::RasterTriangle& t, con
 template <class Reset, class Rasterize>
 bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const {
     const std::uint64_t passed_before = s.counters.depth_passed;
+    s.tile_triangles = 0;
     bool is_reset = false;
     for (std::size_t c = 0; c < chunk_count; ++c) {
         const render::Chunk& chunk = chunks[c];
         const std::span<const std::uint32_t> bin = chunk.bins.tile(tile);
+        s.tile_triangles += bin.size();
         for (std::size_t i = 0; i < bin.size(); ++i) {
             if (!is_reset) reset(), is_reset = true;
             // A tile's triangles lie scattered through the chunk: fetch ahead.
@@ -408,7 +457,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                                           raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
                                       });
     shade_and_resolve(
-        scene, clear, rect, drawn, t0, s,
+        scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
                 s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
@@ -430,7 +479,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                                           raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
                                       });
     shade_and_resolve(
-        scene, clear, rect, drawn, t0, s,
+        scene, clear, tile, drawn, t0, s,
         [&] {  // one fragment per pixel and visible triangle
             raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
                 return triangle_of(id);
@@ -452,24 +501,34 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
 // gather() fills s.fragments and returns their count; resolve(count, shaded)
 // writes the pixels and AOVs.
 template <class Gather, class Resolve>
-void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearValues& clear,
-                                        const raster::TileRect& rect, bool drawn, Clock::time_point raster_start,
-                                        WorkerScratch& s, Gather&& gather, Resolve&& resolve) {
+void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearValues& clear, int tile, bool drawn,
+                                        Clock::time_point raster_start, WorkerScratch& s, Gather&& gather,
+                                        Resolve&& resolve) {
     const auto t1 = Clock::now();
     s.rasterize_ms += ms_between(raster_start, t1);
-    if (!drawn) {  // background only
-        image::clear_tile(rect, clear, image);
-        s.resolve_ms += ms_between(t1, Clock::now());
-        return;
+    std::size_t count = 0;
+    s.tile_light_count = 0;
+    auto t2 = t1;
+    if (drawn) {
+        count = gather();
+        const shade::RadianceOutputs shaded = s.fragments.outputs();
+        shade_tile(scene, count, s);
+        t2 = Clock::now();
+        resolve(count, shaded);
+    } else {  // background only
+        image::clear_tile(grid.rect(tile), clear, image);
     }
-    const std::size_t count = gather();
-    const shade::RadianceOutputs shaded = s.fragments.outputs();
-    shade_tile(scene, count, s);
-    const auto t2 = Clock::now();
-    resolve(count, shaded);
     const auto t3 = Clock::now();
     s.shade_ms += ms_between(t1, t2);
     s.resolve_ms += ms_between(t2, t3);
+    if (settings.profile) {
+        ProfileSpan span;
+        span.kind = ProfileSpan::Kind::tile, span.name = "tile", span.index = tile;
+        span.rasterize_ms = ms_between(raster_start, t1), span.shade_ms = ms_between(t1, t2);
+        span.resolve_ms = ms_between(t2, t3);
+        span.triangles = s.tile_triangles, span.fragments = count, span.lights = s.tile_light_count;
+        record_span(s, span, raster_start, t3);
+    }
 }
 
 shade::TriangleCorners Renderer::Frame::corners_of(const Scene& scene, std::uint32_t id) const {
@@ -494,6 +553,7 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
                 ? shade::lights_reaching(lights, shade::fragment_bounds(inputs), s.tile_lights)
                 : lights;
         shade::shade_fragments(isa, inputs, tile_lights, s.fragments.outputs());
+        s.tile_light_count = std::uint32_t(tile_lights.count());
         shade::add_emission(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;
