@@ -174,6 +174,10 @@ public:
 // Reads and validates a TOML scene file, or a .gltf/.glb file as a whole scene
 // (src/scene/gltf_import.hpp); throws SceneError.
 Scene load_scene_file(const std::filesystem::path& path);
+// The same, taking glTF models from `models` (src/scene/model_cache.hpp): each
+// model file is imported once however many scenes loaded through it use it.
+class ModelCache;
+Scene load_scene_file(const std::filesystem::path& path, ModelCache& models);
 // The same from text in memory; source_name stands for the file in messages.
 Scene parse_scene(std::string_view toml_text, std::string_view source_name);
 

@@ -2,6 +2,7 @@
 // every error into one line on stderr and a non-zero exit status.
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -14,6 +15,8 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/bench_command.hpp"
+#include "cli/load_stats.hpp"
+#include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
@@ -84,8 +87,16 @@ void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage
 
 // Renders one scene to every output; throws on the first error before the
 // render, and after it tries every output and throws if any write failed.
-void render_scene(const RenderCommand& cmd, const std::string& scene_path, tessera::Renderer& renderer) {
-    tessera::Scene scene = tessera::load_scene_file(scene_path);
+// Models come from `models`; after loading the last scene they are dropped
+// (the scene holds what it uses), so its frame does not pay for them.
+void render_scene(const RenderCommand& cmd, const std::string& scene_path, tessera::Renderer& renderer,
+                  tessera::ModelCache& models, bool last_scene) {
+    const tessera::cli::LoadCounters counters_before = tessera::cli::read_load_counters();
+    tessera::cli::SceneWallTimes wall;
+    auto start = std::chrono::steady_clock::now();
+    tessera::Scene scene = tessera::load_scene_file(scene_path, models);
+    if (last_scene) models.clear();
+    wall.load_ms = tessera::cli::milliseconds_since(start);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;
@@ -98,7 +109,10 @@ void render_scene(const RenderCommand& cmd, const std::string& scene_path, tesse
     }
     tessera::validate_scene(scene);  // the renderer trusts its input
 
+    start = std::chrono::steady_clock::now();
     const tessera::RenderedImage& image = renderer.render(scene);  // once, whatever the number of outputs
+    wall.render_ms = tessera::cli::milliseconds_since(start);
+    start = std::chrono::steady_clock::now();
     std::string pending_error;
     for (const std::string& pattern : cmd.outputs) {
         try {
@@ -108,8 +122,12 @@ void render_scene(const RenderCommand& cmd, const std::string& scene_path, tesse
             pending_error = e.what();
         }
     }
+    wall.encode_ms = tessera::cli::milliseconds_since(start);
     if (!pending_error.empty()) throw tessera::ImageError(pending_error);
-    if (cmd.stats) print_stats(renderer, image);
+    if (cmd.stats) {
+        print_stats(renderer, image);
+        tessera::cli::print_load_stats(counters_before, tessera::cli::read_load_counters(), wall);
+    }
 }
 
 // One failing scene does not stop the others; the exit status says whether any failed.
@@ -120,10 +138,11 @@ int run_render(const RenderCommand& cmd) {
     settings.keep_radiance = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path);
     for (const std::string& list : cmd.aov_lists) tessera::parse_aov_list(list, settings.aovs);
     tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from scene to scene
+    tessera::ModelCache models;            // a model several scenes place is loaded once
     std::vector<std::string> failed;
     for (const std::string& scene_path : cmd.scene_paths) {
         try {
-            render_scene(cmd, scene_path, renderer);
+            render_scene(cmd, scene_path, renderer, models, &scene_path == &cmd.scene_paths.back());
         } catch (const std::exception& e) {
             std::fprintf(stderr, "tessera: error: %s\n", e.what());
             failed.push_back(scene_path);

@@ -40,6 +40,7 @@
 //   range -> Light::range (absent = 0 = unlimited).
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -82,6 +83,16 @@ struct GltfReadOptions {
 
 // Reads a .gltf or .glb file (told apart by the "glTF" magic, not the name).
 GltfContent import_gltf_file(const std::filesystem::path& path);
+
+// Wall time of glTF imports in this process, for `tessera render --stats`
+// (texture::build_times() splits the image stage by thread time).
+struct GltfImportTimes {
+    std::atomic<std::int64_t> file_read_ns{0};  // the .gltf/.glb file (import_gltf_file)
+    std::atomic<std::int64_t> parse_ns{0};      // tinygltf, which also reads external buffers and image files
+    std::atomic<std::int64_t> convert_ns{0};    // the node walk: meshes, materials, lights
+    std::atomic<std::int64_t> images_ns{0};     // decoding and mip-mapping the images, all threads
+};
+GltfImportTimes& gltf_import_times();
 // The same from bytes in memory; `source` names the file in messages, and
 // external files resolve against base_dir.
 GltfContent import_gltf(std::span<const std::uint8_t> bytes, const std::string& source,

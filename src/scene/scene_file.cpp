@@ -100,6 +100,7 @@
 #include <toml++/toml.h>
 
 #include "scene/gltf_import.hpp"
+#include "scene/model_cache.hpp"
 #include "tessera/scene.hpp"
 #include "texture/texture.hpp"
 
@@ -154,8 +155,8 @@ constexpr Bounds kNonNegative{0.0, std::numeric_limits<double>::infinity(), ">= 
 // name and the offending node's position.
 class SceneReader {
 public:
-    explicit SceneReader(std::string source)
-        : source_(std::move(source)), base_dir_(std::filesystem::path(source_).parent_path()) {}
+    explicit SceneReader(std::string source, ModelCache* models = nullptr)
+        : source_(std::move(source)), base_dir_(std::filesystem::path(source_).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
         check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models"});
@@ -680,14 +681,14 @@ private:
                 with_lights = flag->get();
             }
             const glm::mat4 placement = read_placement(table, name);
-            GltfContent content;
+            std::shared_ptr<const GltfContent> content;
             try {
-                content = import_gltf_file(file);
+                content = (models_ ? *models_ : own_models_).load(file);
             } catch (const SceneError& error) {
                 fail_at(file_node.source(), "in '" + child(name, "file") + "': " + error.what());
             }
             const std::size_t first_object = scene.objects.size(), first_light = scene.lights.size();
-            append_gltf_content(scene, content, placement, with_lights);
+            append_gltf_content(scene, *content, placement, with_lights);
             // A finite placement of a finite node can still overflow (1e30 · 1e30).
             bool finite = true;
             for (std::size_t o = first_object; o < scene.objects.size(); ++o) finite = finite && finite_matrix(scene.objects[o].model);
@@ -707,6 +708,8 @@ private:
     std::optional<std::uint32_t> default_material_;
     std::vector<std::shared_ptr<const texture::Texture>> textures_;  // becomes Scene::textures
     std::map<std::string, std::int32_t> texture_indices_;            // path and colour space -> index in textures_
+    ModelCache* models_ = nullptr;  // where [[models]] files come from; null: own_models_
+    mutable ModelCache own_models_;  // this scene's alone: a file placed twice is still read once
 };
 
 }  // namespace
@@ -716,7 +719,9 @@ float auto_light_range(const glm::vec3& color) {
     return std::max(std::sqrt(brightest / kAutoRangeIrradiance), std::numeric_limits<float>::min());
 }
 
-Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
+namespace {
+
+Scene parse_scene_with(std::string_view toml_text, std::string_view source_name, ModelCache* models) {
     const std::string source(source_name);
     toml::table root;
     try {
@@ -726,12 +731,13 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
         throw SceneError(source + ":" + std::to_string(where.line) + ":" +
                          std::to_string(where.column) + ": " + std::string(error.description()));
     }
-    return SceneReader(source).read(root);
+    return SceneReader(source, models).read(root);
 }
 
-Scene load_scene_file(const std::filesystem::path& path) {
+// models: null imports each model file here and keeps nothing.
+Scene load_scene_with(const std::filesystem::path& path, ModelCache* models) {
     const std::string name = path.string();
-    if (is_gltf_path(path)) return make_gltf_scene(import_gltf_file(path), name);
+    if (is_gltf_path(path)) return make_gltf_scene(models ? *models->load(path) : import_gltf_file(path), name);
     std::error_code ignored;
     std::ifstream file(path, std::ios::binary);
     if (!file || std::filesystem::is_directory(path, ignored)) {
@@ -740,7 +746,17 @@ Scene load_scene_file(const std::filesystem::path& path) {
     std::ostringstream text;
     text << file.rdbuf();
     if (file.bad()) throw SceneError(name + ": cannot read scene file");
-    return parse_scene(text.str(), name);
+    return parse_scene_with(text.str(), name, models);
 }
+
+}  // namespace
+
+Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
+    return parse_scene_with(toml_text, source_name, nullptr);
+}
+
+Scene load_scene_file(const std::filesystem::path& path) { return load_scene_with(path, nullptr); }
+
+Scene load_scene_file(const std::filesystem::path& path, ModelCache& models) { return load_scene_with(path, &models); }
 
 }  // namespace tessera

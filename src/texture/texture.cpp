@@ -4,12 +4,22 @@
 #include "texture/texture.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <new>
 #include <string>
 #include <system_error>
 #include <utility>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <sys/mman.h>
 
 #include "simd/lane_padding.hpp"
 
@@ -25,8 +35,9 @@ std::string quoted(const std::filesystem::path& path) {
     return text;
 }
 
+// source: "texture 'path'", "texture from_pixels", or the caller's label for an image in memory.
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
-    throw TextureError("texture " + source + ": " + what);
+    throw TextureError(source + ": " + what);
 }
 
 // OpenImageIO's messages may span lines; the CLI prints one.
@@ -80,7 +91,7 @@ AxisTaps axis_taps(float coord, int size, float size_f, Wrap wrap) {
 // along one axis: output texel i covers [i·r, (i+1)·r) of the input, r = from/to.
 struct FilterTap {
     int source;
-    double weight;
+    float weight;
 };
 
 std::vector<std::vector<FilterTap>> box_filter_taps(int from, int to) {
@@ -91,7 +102,7 @@ std::vector<std::vector<FilterTap>> box_filter_taps(int from, int to) {
         const double end = (i + 1) * ratio;
         for (int j = static_cast<int>(std::floor(begin)); j < from && j < end; ++j) {
             const double covered = std::min(end, j + 1.0) - std::max(begin, static_cast<double>(j));
-            if (covered > 0.0) taps[static_cast<std::size_t>(i)].push_back({j, covered / ratio});
+            if (covered > 0.0) taps[static_cast<std::size_t>(i)].push_back({j, static_cast<float>(covered / ratio)});
         }
     }
     return taps;
@@ -104,111 +115,113 @@ float srgb_to_linear(float encoded) {
     return static_cast<float>(std::pow((static_cast<double>(encoded) + 0.055) / 1.055, 2.4));
 }
 
-Texture Texture::from_pixels(int width, int height, int channels, const float* pixels, ColorSpace color_space) {
-    check_size("from_pixels", width, height);
-    if (channels < 1) fail("from_pixels", "no channels (" + std::to_string(channels) + ")");
-    if (pixels == nullptr) fail("from_pixels", "no pixel data");
+const std::array<float, 256>& srgb_decode_table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int k = 0; k < 256; ++k) t[static_cast<std::size_t>(k)] = srgb_to_linear(static_cast<float>(k) / 255.0f);
+        return t;
+    }();
+    return table;
+}
 
-    Texture texture;
-    const std::size_t texel_count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    texture.levels_.push_back({width, height, 0});
-    texture.texels_.resize(texel_count * 4);
-    const auto decode = [color_space](float value) {
-        return color_space == ColorSpace::srgb ? srgb_to_linear(value) : value;
-    };
-    const std::size_t stride = static_cast<std::size_t>(channels);
-    for (std::size_t t = 0; t < texel_count; ++t) {
-        const float* in = pixels + t * stride;
-        float* out = texture.texels_.data() + t * 4;
-        if (channels <= 2) {
-            out[0] = out[1] = out[2] = decode(in[0]);
-        } else {
-            out[0] = decode(in[0]);
-            out[1] = decode(in[1]);
-            out[2] = decode(in[2]);
+const std::array<float, 256>& unorm8_table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        // k / 255.0f, the same IEEE division the SIMD sampler does.
+        for (int k = 0; k < 256; ++k) t[static_cast<std::size_t>(k)] = static_cast<float>(k) / 255.0f;
+        return t;
+    }();
+    return table;
+}
+
+std::uint8_t encode_unorm8(float linear) {
+    return static_cast<std::uint8_t>(std::floor(clamp_nan_low(linear, 0.0f, 1.0f) * 255.0f + 0.5f));
+}
+
+namespace {
+
+// round(255·encode(x)) steps from k to k+1 where encode(x) = (k + ½)/255,
+// that is at x = decode((k + ½)/255): 255 thresholds in linear light.
+// first_code[i] is the code of x = i/kBins; the code of x in [i/kBins,
+// (i+1)/kBins) is then at most a step or two above (the steepest part of the
+// curve, slope 12.92·255 near 0, puts 0.8 steps in a bin): exact, no pow.
+struct SrgbEncoder {
+    static constexpr int kBins = 4096;
+    std::array<float, 256> thresholds{};  // [255] = +∞, a sentinel
+    std::array<std::uint8_t, kBins> first_code{};
+
+    SrgbEncoder() {
+        for (int k = 0; k < 255; ++k) {
+            const double c = (k + 0.5) / 255.0;
+            thresholds[static_cast<std::size_t>(k)] =
+                static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
         }
-        // Alpha is coverage, linear in every colour space.
-        out[3] = channels == 2 ? in[1] : channels >= 4 ? in[3] : 1.0f;
+        thresholds[255] = INFINITY;
+        for (int i = 0; i < kBins; ++i) first_code[static_cast<std::size_t>(i)] = search(static_cast<float>(i) / kBins);
     }
-    texture.build_mip_chain();
-    return texture;
+    std::uint8_t search(float x) const {
+        return static_cast<std::uint8_t>(std::upper_bound(thresholds.begin(), thresholds.end() - 1, x) - thresholds.begin());
+    }
+    std::uint8_t encode(float x) const {
+        x = clamp_nan_low(x, 0.0f, 1.0f);
+        const int bin = std::min(kBins - 1, static_cast<int>(x * kBins));
+        // x >= bin/kBins up to float rounding of x·kBins: start one bin lower to be safe.
+        unsigned code = first_code[static_cast<std::size_t>(std::max(0, bin - 1))];
+        while (x >= thresholds[code]) ++code;
+        return static_cast<std::uint8_t>(code);
+    }
+};
+
+}  // namespace
+
+std::uint8_t encode_srgb8(float linear) {
+    static const SrgbEncoder encoder;
+    return encoder.encode(linear);
 }
 
-Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space) {
-    const std::string source = quoted(path);
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) fail(source, "file not found");
-    if (!std::filesystem::is_regular_file(path, error)) fail(source, "not a regular file");
-    if (std::filesystem::file_size(path, error) == 0 && !error) fail(source, "empty file (0 bytes)");
-
-    // Straight (unassociated) alpha as stored: OpenImageIO would otherwise
-    // premultiply PNG colour by alpha, in the encoded (sRGB) values.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path.string(), &config);
-    if (!input) fail(source, "cannot read image: " + one_line(OIIO::geterror()));
-
-    const OIIO::ImageSpec& spec = input->spec();
-    check_size(source, spec.width, spec.height);
-    if (spec.depth > 1) fail(source, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
-    if (spec.nchannels < 1) fail(source, "no channels");
-
-    const int channels = std::min(spec.nchannels, 4);
-    std::vector<float> pixels(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                              static_cast<std::size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        fail(source, "truncated or corrupt image data: " + one_line(input->geterror()));
-    input->close();
-
-    try {
-        return from_pixels(spec.width, spec.height, channels, pixels.data(), color_space);
-    } catch (const TextureError& e) {
-        fail(source, e.what());
-    }
+TextureBuildTimes& build_times() {
+    static TextureBuildTimes times;
+    return times;
 }
 
-void Texture::build_mip_chain() {
-    MipLevel parent = levels_.front();
-    // Every level's room at once: growing the array level by level moved it
-    // and faulted in fresh pages each time (2 s for a 2048² texture, half of it that).
-    std::size_t total = 0;
-    for (int w = parent.width, h = parent.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
-        total += static_cast<std::size_t>(w) * h;
+namespace {
+
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+// Room for `count` texels. From 2 MiB up, 2 MiB-aligned and advised into
+// transparent huge pages before the first touch: on our VMs a 4 KiB page
+// fault is expensive, and a 2048² map with its mips is 5,500 of them.
+std::uint32_t* allocate_texels(std::size_t count) {
+    const std::size_t bytes = count * sizeof(std::uint32_t);
+    if (bytes < kHugePage) {
+        void* memory = std::malloc(bytes);
+        if (memory == nullptr) throw std::bad_alloc();
+        return static_cast<std::uint32_t*>(memory);
+    }
+    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    void* memory = std::aligned_alloc(kHugePage, rounded);
+    if (memory == nullptr) throw std::bad_alloc();
+    madvise(memory, rounded, MADV_HUGEPAGE);  // a hint: harmless where huge pages are off
+    return static_cast<std::uint32_t*>(memory);
+}
+
+}  // namespace
+
+void Texture::FreeTexels::operator()(std::uint32_t* texels) const { std::free(texels); }
+
+void Texture::allocate(int width, int height, ColorSpace color_space) {
+    color_space_ = color_space;
+    levels_.clear();
+    std::size_t offset = 0;
+    for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        levels_.push_back({w, h, offset});
+        offset += static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
         if (w == 1 && h == 1) break;
     }
-    texels_.reserve(total * 4);
-    while (parent.width > 1 || parent.height > 1) {
-        const MipLevel child{std::max(1, parent.width / 2), std::max(1, parent.height / 2),
-                             parent.offset + static_cast<std::size_t>(parent.width) * parent.height};
-        const auto x_taps = box_filter_taps(parent.width, child.width);
-        const auto y_taps = box_filter_taps(parent.height, child.height);
-
-        // Rows first (parent.height rows of child.width texels), in double, then columns.
-        std::vector<double> rows(static_cast<std::size_t>(child.width) * parent.height * 4, 0.0);
-        for (int y = 0; y < parent.height; ++y) {
-            const float* parent_row = texels_.data() + (parent.offset + static_cast<std::size_t>(y) * parent.width) * 4;
-            for (int x = 0; x < child.width; ++x) {
-                double* out = rows.data() + (static_cast<std::size_t>(y) * child.width + x) * 4;
-                for (const FilterTap& tap : x_taps[static_cast<std::size_t>(x)])
-                    for (int c = 0; c < 4; ++c) out[c] += tap.weight * parent_row[tap.source * 4 + c];
-            }
-        }
-        texels_.resize((child.offset + static_cast<std::size_t>(child.width) * child.height) * 4);
-        for (int y = 0; y < child.height; ++y) {
-            for (int x = 0; x < child.width; ++x) {
-                double sum[4] = {0.0, 0.0, 0.0, 0.0};
-                for (const FilterTap& tap : y_taps[static_cast<std::size_t>(y)]) {
-                    const double* in = rows.data() + (static_cast<std::size_t>(tap.source) * child.width + x) * 4;
-                    for (int c = 0; c < 4; ++c) sum[c] += tap.weight * in[c];
-                }
-                float* out = texels_.data() + (child.offset + static_cast<std::size_t>(y) * child.width + x) * 4;
-                for (int c = 0; c < 4; ++c) out[c] = static_cast<float>(sum[c]);
-            }
-        }
-        levels_.push_back(child);
-        parent = child;
-    }
-
+    // Every level's room at once, uninitialised (every texel is written next);
+    // the pages are touched by the threads that fill them.
+    texels_.reset(allocate_texels(offset));
+    texel_count_ = offset;
     for (std::size_t i = 0; i < levels_.size(); ++i) {
         width_table_[i] = levels_[i].width;
         height_table_[i] = levels_[i].height;
@@ -218,10 +231,230 @@ void Texture::build_mip_chain() {
     }
 }
 
+Texture Texture::from_pixels(int width, int height, int channels, const float* pixels, ColorSpace color_space) {
+    check_size("texture from_pixels", width, height);
+    if (channels < 1) fail("texture from_pixels", "no channels (" + std::to_string(channels) + ")");
+    if (pixels == nullptr) fail("texture from_pixels", "no pixel data");
+    const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                              static_cast<std::size_t>(channels);
+    std::vector<std::uint8_t> bytes(count);
+    // The values are already in color_space's encoding: rounded as they are.
+    for (std::size_t i = 0; i < count; ++i) bytes[i] = encode_unorm8(pixels[i]);
+    return from_pixels(width, height, channels, bytes.data(), color_space);
+}
+
+namespace {
+
+// `count` texels of `channels` bytes each → RGBA8 words: grey → (g, g, g, 1),
+// grey + alpha → (g, g, g, a), RGB → (r, g, b, 1), RGBA and more: the first four.
+void expand_to_rgba8(const std::uint8_t* in, int channels, std::size_t count, std::uint32_t* out) {
+    const auto word = [](std::uint32_t r, std::uint32_t g, std::uint32_t b, std::uint32_t a) {
+        return r | g << 8 | b << 16 | a << 24;
+    };
+    const std::size_t stride = static_cast<std::size_t>(channels);
+    for (std::size_t t = 0; t < count; ++t, in += stride) {
+        switch (channels) {
+            case 1: out[t] = word(in[0], in[0], in[0], 255); break;
+            case 2: out[t] = word(in[0], in[0], in[0], in[1]); break;
+            case 3: out[t] = word(in[0], in[1], in[2], 255); break;
+            default: out[t] = word(in[0], in[1], in[2], in[3]); break;
+        }
+    }
+}
+
+std::int64_t nanoseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Texture Texture::from_pixels(int width, int height, int channels, const std::uint8_t* pixels,
+                             ColorSpace color_space) {
+    check_size("texture from_pixels", width, height);
+    if (channels < 1) fail("texture from_pixels", "no channels (" + std::to_string(channels) + ")");
+    if (pixels == nullptr) fail("texture from_pixels", "no pixel data");
+    Texture texture;
+    texture.allocate(width, height, color_space);
+    expand_to_rgba8(pixels, channels, static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+                    texture.texels_.get());
+    texture.build_mip_chain();
+    return texture;
+}
+
+// Decodes an opened image into level 0, then builds the mips.
+struct ImageDecoder {
+    static Texture decode(OIIO::ImageInput& input, const std::string& source, ColorSpace color_space);
+};
+
+Texture ImageDecoder::decode(OIIO::ImageInput& input, const std::string& source, ColorSpace color_space) {
+    const OIIO::ImageSpec& spec = input.spec();
+    check_size(source, spec.width, spec.height);
+    if (spec.depth > 1) fail(source, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
+    if (spec.nchannels < 1) fail(source, "no channels");
+
+    Texture texture;
+    texture.allocate(spec.width, spec.height, color_space);
+    // Decoded in bands of rows straight to 8 bits (OpenImageIO rounds 16-bit
+    // and float data), each band expanded into level 0: no full-size copy of
+    // the image besides the texture itself.
+    const int channels = std::min(spec.nchannels, 4);
+    const std::size_t row_texels = static_cast<std::size_t>(spec.width);
+    const int band_rows = std::max(1, std::min(spec.height, static_cast<int>((1 << 20) / (row_texels * 4) + 1)));
+    std::vector<std::uint8_t> band(row_texels * static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(channels));
+    std::int64_t decode_ns = 0, upload_ns = 0;
+    for (int y = 0; y < spec.height; y += band_rows) {
+        const int y_end = std::min(spec.height, y + band_rows);
+        std::uint32_t* level0_rows = texture.texels_.get() + static_cast<std::size_t>(y) * row_texels;
+        const bool direct = channels == 4;  // RGBA8 is the file's layout: decode in place
+        auto start = std::chrono::steady_clock::now();
+        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + y_end, 0, 0, channels, OIIO::TypeDesc::UINT8,
+                                  direct ? static_cast<void*>(level0_rows) : band.data()))
+            fail(source, "truncated or corrupt image data: " + one_line(input.geterror()));
+        decode_ns += nanoseconds_since(start);
+        if (direct) continue;
+        start = std::chrono::steady_clock::now();
+        expand_to_rgba8(band.data(), channels, row_texels * static_cast<std::size_t>(y_end - y), level0_rows);
+        upload_ns += nanoseconds_since(start);
+    }
+    build_times().decode_ns += decode_ns;
+    build_times().upload_ns += upload_ns;
+    texture.build_mip_chain();
+    return texture;
+}
+
+Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space) {
+    const std::string source = "texture " + quoted(path);
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) fail(source, "file not found");
+    if (!std::filesystem::is_regular_file(path, error)) fail(source, "not a regular file");
+    if (std::filesystem::file_size(path, error) == 0 && !error) fail(source, "empty file (0 bytes)");
+
+    // Straight (unassociated) alpha as stored: OpenImageIO would otherwise
+    // premultiply PNG colour by alpha, in the encoded (sRGB) values.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    const auto start = std::chrono::steady_clock::now();
+    auto input = OIIO::ImageInput::open(path.string(), &config);
+    build_times().decode_ns += nanoseconds_since(start);
+    if (!input) fail(source, "cannot read image: " + one_line(OIIO::geterror()));
+    return ImageDecoder::decode(*input, source, color_space);
+}
+
+Texture Texture::decode(std::span<const std::uint8_t> encoded, const std::string& source, ColorSpace color_space) {
+    // OpenImageIO picks its reader by file extension: name one from the bytes' signature.
+    std::string format;
+    if (encoded.size() >= 2 && encoded[0] == 0xFF && encoded[1] == 0xD8) format = "image.jpg";
+    else if (encoded.size() >= 4 && std::memcmp(encoded.data(), "\x89PNG", 4) == 0) format = "image.png";
+    else fail(source, "is neither PNG nor JPEG");
+    const auto start = std::chrono::steady_clock::now();
+    OIIO::Filesystem::IOMemReader memory(const_cast<std::uint8_t*>(encoded.data()), encoded.size());
+    // Alpha as OpenImageIO gives it by default (PNG colour premultiplied by
+    // alpha), as glTF images were read before 8-bit storage; glTF means
+    // straight alpha ("oiio:UnassociatedAlpha" as load() sets), which is the
+    // alpha modes' business.
+    OIIO::ImageSpec config;
+    // Opened by create() itself (do_open): create() with a proxy opens the
+    // image anyway, and a second open() started the JPEG decoder twice.
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, true, &config, &memory);
+    if (!input)
+        fail(source, "cannot decode image: " + one_line(OIIO::geterror()));
+    build_times().decode_ns += nanoseconds_since(start);
+    return ImageDecoder::decode(*input, source, color_space);
+}
+
+// Level n+1 from level n: decode the parent's texels to linear light, box
+// filter (separable taps), round to 8 bits in the texture's colour space.
+void Texture::build_mip_chain() {
+    const auto start = std::chrono::steady_clock::now();
+    const float* const rgb_decode = (color_space_ == ColorSpace::srgb ? srgb_decode_table() : unorm8_table()).data();
+    const float* const alpha_decode = unorm8_table().data();
+    const auto rgb_encode = color_space_ == ColorSpace::srgb ? encode_srgb8 : encode_unorm8;
+    for (std::size_t l = 1; l < levels_.size(); ++l) {
+        const MipLevel parent = levels_[l - 1];
+        const MipLevel child = levels_[l];
+        const auto x_taps = box_filter_taps(parent.width, child.width);
+        const auto y_taps = box_filter_taps(parent.height, child.height);
+        const std::uint32_t* const parent_texels = texels_.get() + parent.offset;
+        std::uint32_t* const child_texels = texels_.get() + child.offset;
+        const auto encode = [&](float r, float g, float b, float a) {
+            return std::uint32_t(rgb_encode(r)) | std::uint32_t(rgb_encode(g)) << 8 |
+                   std::uint32_t(rgb_encode(b)) << 16 | std::uint32_t(encode_unorm8(a)) << 24;
+        };
+        // Both sides even: every texel is the plain 2×2 average. The same floats
+        // as the general taps give (weights ¼ = ½·½, summed in the same order;
+        // scaling by ¼ is exact), without their bookkeeping.
+        const bool halves = parent.width == 2 * child.width && parent.height == 2 * child.height;
+        const auto build_half_rows = [&](int row_begin, int row_end) {
+            for (int y = row_begin; y < row_end; ++y) {
+                const std::uint32_t* row0 = parent_texels + static_cast<std::size_t>(2 * y) * parent.width;
+                const std::uint32_t* row1 = row0 + parent.width;
+                std::uint32_t* out = child_texels + static_cast<std::size_t>(y) * child.width;
+                for (int x = 0; x < child.width; ++x) {
+                    const std::uint32_t t[4] = {row0[2 * x], row0[2 * x + 1], row1[2 * x], row1[2 * x + 1]};
+                    float sum[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+                    for (const std::uint32_t texel : t) {
+                        sum[0] += rgb_decode[texel & 0xFF];
+                        sum[1] += rgb_decode[(texel >> 8) & 0xFF];
+                        sum[2] += rgb_decode[(texel >> 16) & 0xFF];
+                        sum[3] += alpha_decode[texel >> 24];
+                    }
+                    out[x] = encode(0.25f * sum[0], 0.25f * sum[1], 0.25f * sum[2], 0.25f * sum[3]);
+                }
+            }
+        };
+        const auto build_rows = [&](int row_begin, int row_end) {
+            if (halves) return build_half_rows(row_begin, row_end);
+            std::vector<float> sum(static_cast<std::size_t>(child.width) * 4);
+            for (int y = row_begin; y < row_end; ++y) {
+                std::fill(sum.begin(), sum.end(), 0.0f);
+                for (const FilterTap& y_tap : y_taps[static_cast<std::size_t>(y)]) {
+                    const std::uint32_t* row = parent_texels + static_cast<std::size_t>(y_tap.source) * parent.width;
+                    for (int x = 0; x < child.width; ++x) {
+                        float* out = sum.data() + static_cast<std::size_t>(x) * 4;
+                        for (const FilterTap& x_tap : x_taps[static_cast<std::size_t>(x)]) {
+                            const std::uint32_t t = row[x_tap.source];
+                            const float w = y_tap.weight * x_tap.weight;
+                            out[0] += w * rgb_decode[t & 0xFF];
+                            out[1] += w * rgb_decode[(t >> 8) & 0xFF];
+                            out[2] += w * rgb_decode[(t >> 16) & 0xFF];
+                            out[3] += w * alpha_decode[t >> 24];
+                        }
+                    }
+                }
+                std::uint32_t* out = child_texels + static_cast<std::size_t>(y) * child.width;
+                for (int x = 0; x < child.width; ++x) {
+                    const float* s = sum.data() + static_cast<std::size_t>(x) * 4;
+                    out[x] = encode(s[0], s[1], s[2], s[3]);
+                }
+            }
+        };
+        // Bands of rows in parallel, for the large levels only (the small ones cost less than a task).
+        const std::size_t child_texels_count = static_cast<std::size_t>(child.width) * child.height;
+        if (child_texels_count >= 16384) {
+            const int grain = std::max(1, 8192 / child.width);
+            tbb::parallel_for(tbb::blocked_range<int>(0, child.height, grain),
+                              [&](const tbb::blocked_range<int>& rows) { build_rows(rows.begin(), rows.end()); });
+        } else {
+            build_rows(0, child.height);
+        }
+    }
+    build_times().mips_ns += nanoseconds_since(start);
+    build_times().textures += 1;
+    build_times().bytes += static_cast<std::int64_t>(memory_bytes());
+}
+
 glm::vec4 Texture::texel(int level_index, int x, int y) const {
     const MipLevel& l = level(level_index);
-    const float* t = texels_.data() + (l.offset + static_cast<std::size_t>(y) * l.width + x) * 4;
-    return {t[0], t[1], t[2], t[3]};
+    const std::uint32_t t = texels_[l.offset + static_cast<std::size_t>(y) * l.width + static_cast<std::size_t>(x)];
+    const float* rgb = (color_space_ == ColorSpace::srgb ? srgb_decode_table() : unorm8_table()).data();
+    const float* alpha = unorm8_table().data();
+    return {rgb[t & 0xFF], rgb[(t >> 8) & 0xFF], rgb[(t >> 16) & 0xFF], alpha[t >> 24]};
+}
+
+std::array<std::uint8_t, 4> Texture::texel_bytes(int level_index, int x, int y) const {
+    const MipLevel& l = level(level_index);
+    const std::uint32_t t = texels_[l.offset + static_cast<std::size_t>(y) * l.width + static_cast<std::size_t>(x)];
+    return {std::uint8_t(t), std::uint8_t(t >> 8), std::uint8_t(t >> 16), std::uint8_t(t >> 24)};
 }
 
 glm::vec4 Texture::sample_bilinear(int level_index, float u, float v, Wrap wrap) const {
@@ -249,8 +482,9 @@ glm::vec4 Texture::sample_trilinear(glm::vec2 uv, float lod, Wrap wrap) const {
 }
 
 TextureView Texture::view() const {
-    return {texels_.data(),        level_count(),         width_table_.data(), height_table_.data(),
-            offset_table_.data(),  width_f_table_.data(), height_f_table_.data()};
+    return {texels_.get(),        color_space_ == ColorSpace::srgb, srgb_decode_table().data(),
+            level_count(),         width_table_.data(),              height_table_.data(),
+            offset_table_.data(),  width_f_table_.data(),            height_f_table_.data()};
 }
 
 float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int width, int height) {

@@ -5,16 +5,24 @@
 // (texture.cpp); sample_trilinear(Isa, ...) runs the same arithmetic over
 // batches of fragments (texture_sampling_simd.cpp, one copy per ISA).
 //
-// Storage: every level is linear float RGBA, interleaved (r, g, b, a per texel),
-// all levels in one array. A bilinear tap then touches one 16-byte texel for
-// all four channels, so a 2×2 footprint is two cache lines at most; per-channel
-// planes would need four times as many lines for the same fetches.
+// Storage: 8 bits per channel, RGBA interleaved in one 32-bit word per texel
+// (r in the low byte), all levels in one array: GL_RGBA8, or GL_SRGB8_ALPHA8
+// for sRGB maps. A 2048² map with its mips is 22 MB (it was 90 MB as float
+// RGBA), and a bilinear tap is one 4-byte load for all four channels. The
+// stored values are the file's: for 8-bit PNG/JPEG sources level 0 is exactly
+// the image; mip levels are filtered in linear light and rounded to 8 bits.
+// Sampling decodes each texel to linear light before filtering, as GL does:
+// sRGB colour through a 256-entry table of the exact transfer function,
+// everything else (linear colour, alpha) as byte/255.
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,7 +41,9 @@ using simd::padded_count;
 // How the stored values relate to light. sRGB data (albedo/base colour, 8-bit
 // images authored for display) is decoded to linear with the exact sRGB transfer
 // function, as GL does for GL_SRGB8_ALPHA8 textures: alpha stays linear. Linear
-// data (metallic, roughness, ao, normal maps, EXR) is kept as read.
+// data (metallic, roughness, ao, normal maps) is kept as read. Both are stored
+// as 8-bit values in [0, 1]: float or 16-bit sources (EXR, 16-bit PNG) are
+// clamped and rounded.
 enum class ColorSpace { srgb, linear };
 
 // What happens outside [0, 1]: GL_REPEAT (the pattern tiles) or
@@ -50,11 +60,20 @@ public:
 // The exact sRGB decode (IEC 61966-2-1): c/12.92 up to 0.04045, else ((c + 0.055)/1.055)^2.4.
 float srgb_to_linear(float encoded);
 
+// 8-bit value → linear light, by table (the sampler's decode, texture.hpp header):
+// srgb_decode_table()[k] = srgb_to_linear(k/255), unorm8_table()[k] = k/255.
+const std::array<float, 256>& srgb_decode_table();
+const std::array<float, 256>& unorm8_table();
+// Linear light → the nearest 8-bit value (mip levels are stored this way):
+// round(255·x) for linear data, round(255·sRGB_encode(x)) for sRGB, x clamped to [0, 1].
+std::uint8_t encode_unorm8(float linear);
+std::uint8_t encode_srgb8(float linear);
+
 // One mip level: its size in texels and where its first texel is in Texture::texels().
 struct MipLevel {
     int width = 0;
     int height = 0;
-    std::size_t offset = 0;  // in texels (4 floats each)
+    std::size_t offset = 0;  // in texels (one 32-bit RGBA8 word each)
 };
 
 // Up to 16384 per side: 15 levels.
@@ -65,7 +84,9 @@ inline constexpr int kMaxMipLevels = 15;
 // (kernels compiled for a wider ISA must not instantiate code shared with the
 // baseline). Tables hold level_count entries.
 struct TextureView {
-    const float* texels = nullptr;  // interleaved RGBA, all levels
+    const std::uint32_t* texels = nullptr;  // RGBA8 words (r in the low byte), all levels
+    bool srgb = false;                      // colour through srgb_decode_table(), else byte/255
+    const float* srgb_table = nullptr;      // srgb_decode_table().data()
     int level_count = 0;
     const std::int32_t* width = nullptr;
     const std::int32_t* height = nullptr;
@@ -74,7 +95,7 @@ struct TextureView {
     const float* height_f = nullptr;
 };
 
-// An image with a full mip chain, linear float RGBA.
+// An image with a full mip chain, RGBA8 (see the storage note above).
 //
 // Level 0 is the source. Level n+1 has size max(1, floor(w/2)) × max(1, floor(h/2))
 // of level n (GL's rule), down to 1×1: floor(log2(max(w, h))) + 1 levels. Each
@@ -83,7 +104,10 @@ struct TextureView {
 // side (w = 2k+1 → k) a texel covers w/k > 2 parent texels, the partially covered
 // one weighted by its covered fraction (5 → 2: (t0 + t1 + ½·t2)/2.5). The filter
 // is separable, preserves the mean exactly (up to rounding), and is one of the
-// box filters glGenerateMipmap permits. Filtering happens on linear values.
+// box filters glGenerateMipmap permits. Filtering happens on linear values
+// (the decoded texels of level n), the result rounded to 8 bits in the
+// texture's colour space. Rows of a level are built in parallel (TBB); each
+// texel's arithmetic is fixed, so the chain is the same with any thread count.
 //
 // Channels: 1 = grey → (g, g, g, 1); 2 = grey + alpha → (g, g, g, a);
 // 3 = RGB → (r, g, b, 1); 4 = RGBA; more than 4: the first 4, the rest ignored.
@@ -93,18 +117,31 @@ public:
     // subimage. Throws TextureError for a missing or unreadable file, a truncated
     // image, a zero size, or a side above kMaxTextureSize.
     static Texture load(const std::filesystem::path& path, ColorSpace color_space);
+    // The same from an encoded PNG or JPEG image in memory (a glTF image);
+    // messages read "<source>: what is wrong".
+    static Texture decode(std::span<const std::uint8_t> encoded, const std::string& source, ColorSpace color_space);
     // `pixels` holds width·height·channels floats, row-major, top row first,
-    // channels interleaved; in color_space (sRGB values are decoded as by load).
+    // channels interleaved, in color_space's encoding (sRGB values are the
+    // encoded ones), rounded to 8 bits: round(255·clamp(value, 0, 1)).
     static Texture from_pixels(int width, int height, int channels, const float* pixels, ColorSpace color_space);
+    // The same from 8-bit values, stored as they are.
+    static Texture from_pixels(int width, int height, int channels, const std::uint8_t* pixels,
+                               ColorSpace color_space);
 
     int width() const { return levels_.front().width; }
     int height() const { return levels_.front().height; }
     int level_count() const { return static_cast<int>(levels_.size()); }
     const MipLevel& level(int index) const { return levels_.at(static_cast<std::size_t>(index)); }
-    const std::vector<float>& texels() const { return texels_; }
+    ColorSpace color_space() const { return color_space_; }
+    std::span<const std::uint32_t> texels() const { return {texels_.get(), texel_count_}; }
+    // Bytes held by the texels of every level.
+    std::size_t memory_bytes() const { return texel_count_ * sizeof(std::uint32_t); }
 
-    // Texel (x, y) of a level, no wrapping: 0 <= x < width, 0 <= y < height of that level.
+    // Texel (x, y) of a level, no wrapping: 0 <= x < width, 0 <= y < height of
+    // that level. Decoded to linear light (the values the sampler filters).
     glm::vec4 texel(int level, int x, int y) const;
+    // The stored 8-bit values of that texel: r, g, b, a.
+    std::array<std::uint8_t, 4> texel_bytes(int level, int x, int y) const;
 
     // GL_LINEAR on one level. (u, v) in texture space: (0, 0) is the top-left
     // corner of the image (its first row), (1, 1) the bottom-right; texel (i, j)
@@ -122,10 +159,21 @@ public:
 
 private:
     Texture() = default;
+    friend struct ImageDecoder;  // texture.cpp: decodes an image file into level 0
+    // Sizes every level and allocates the texels; level 0 is then filled.
+    void allocate(int width, int height, ColorSpace color_space);
     void build_mip_chain();  // from level 0 in texels_
 
     std::vector<MipLevel> levels_;
-    std::vector<float> texels_;  // all levels, RGBA
+    ColorSpace color_space_ = ColorSpace::linear;
+    // All levels, RGBA8. Not a std::vector: its zero fill cost a memset of
+    // 22 MB per 2048² map before the decoder and the mip filter wrote every
+    // texel. Maps of 2 MiB and more are in transparent huge pages (texture.cpp).
+    struct FreeTexels {
+        void operator()(std::uint32_t* texels) const;
+    };
+    std::unique_ptr<std::uint32_t[], FreeTexels> texels_;
+    std::size_t texel_count_ = 0;
     // The per-level tables of TextureView.
     std::array<std::int32_t, kMaxMipLevels> width_table_{};
     std::array<std::int32_t, kMaxMipLevels> height_table_{};
@@ -133,6 +181,19 @@ private:
     std::array<float, kMaxMipLevels> width_f_table_{};
     std::array<float, kMaxMipLevels> height_f_table_{};
 };
+
+// Time spent making textures in this process, summed over the threads that
+// did it (so it can exceed wall time), for `tessera render --stats`:
+// decoding PNG/JPEG to 8-bit rows, expanding them into RGBA8 level 0 (the
+// sampler's layout), and filtering the mip levels. Never reset by the library.
+struct TextureBuildTimes {
+    std::atomic<std::int64_t> decode_ns{0};
+    std::atomic<std::int64_t> upload_ns{0};
+    std::atomic<std::int64_t> mips_ns{0};
+    std::atomic<std::int64_t> textures{0};  // textures built
+    std::atomic<std::int64_t> bytes{0};     // their memory_bytes()
+};
+TextureBuildTimes& build_times();
 
 // The level of detail λ = log2(ρ) of the GL spec (§8.14.1, the non-approximated
 // scale factor): ρ = max(|∂(uv·size)/∂x|, |∂(uv·size)/∂y|), the longer of the
@@ -176,9 +237,10 @@ struct TexelOutputs {
 };
 
 // out[i] = texture.sample_trilinear({u[i], v[i]}, lod[i], wrap) for i < in.count.
-// The SIMD ISAs run the scalar sampler's operations in the same order, without
+// The SIMD ISAs decode texels as the scalar sampler does (the same table, or
+// the same division by 255) and run its operations in the same order, without
 // FMA contraction, so they return the same floats (tests/texture/test_texture.cpp
-// checks |simd − scalar| <= 1e-5 for texels in [0, 1]; it measures 0).
+// checks |simd − scalar| <= 1e-5; it measures 0).
 void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const TexCoordInputs& in,
                       const TexelOutputs& out);
 

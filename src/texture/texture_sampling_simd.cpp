@@ -1,7 +1,10 @@
 // Texture::sample_trilinear (texture.cpp) over xsimd batches: one fragment per
 // lane, each lane with its own level pair, so the per-level sizes and offsets
-// are gathered from the TextureView tables, and the texels by
-// simd::hardware_gather (vgatherdps on AVX2/AVX-512, lane by lane on SSE4.2).
+// are gathered from the TextureView tables, and the RGBA8 texel words by
+// simd::hardware_gather (vpgatherdd on AVX2/AVX-512, lane by lane on SSE4.2).
+// Each channel byte is decoded before filtering as the scalar texel() does:
+// sRGB colour by gathering from the same 256-entry table, the rest as
+// float(byte) / 255, the division that built unorm8_table().
 // Compiled once per ISA like shade_kernels_simd.cpp; entry points carry
 // TESSERA_SIMD_SUFFIX, everything else is in an anonymous namespace.
 //
@@ -83,12 +86,16 @@ AxisTaps axis_taps(Batch coord, const IntBatch& size, const Batch& size_f, Wrap 
             xsimd::select(i1 < zero, zero, xsimd::select(i1 > last, last, i1)), x - x_floor};
 }
 
-// The texel at texel index `index` (interleaved: channel c at 4·index + c).
+// The texel at texel index `index`, its first N channels decoded to linear light.
 template <int N>
-Texels<N> fetch(const float* texels, const IntBatch& index) {
-    const IntBatch base = index * IntBatch(4);
+Texels<N> fetch(const TextureView& texture, const IntBatch& index) {
+    const IntBatch word = simd::hardware_gather(reinterpret_cast<const std::int32_t*>(texture.texels), index);
     Texels<N> result;
-    for (int k = 0; k < N; ++k) result.c[k] = simd::hardware_gather(texels + k, base);
+    for (int k = 0; k < N; ++k) {
+        const IntBatch byte = (word >> (8 * k)) & IntBatch(0xFF);
+        if (k < 3 && texture.srgb) result.c[k] = simd::hardware_gather(texture.srgb_table, byte);
+        else result.c[k] = xsimd::to_float(byte) / Batch(255.0f);
+    }
     return result;
 }
 
@@ -99,9 +106,8 @@ Texels<N> sample_bilinear(const TextureView& texture, const IntBatch& level, con
     const AxisTaps y = axis_taps(v, l.height, l.height_f, wrap);
     const IntBatch row0 = l.offset + y.i0 * l.width;
     const IntBatch row1 = l.offset + y.i1 * l.width;
-    const Texels<N> top = lerp(fetch<N>(texture.texels, row0 + x.i0), fetch<N>(texture.texels, row0 + x.i1), x.alpha);
-    const Texels<N> bottom =
-        lerp(fetch<N>(texture.texels, row1 + x.i0), fetch<N>(texture.texels, row1 + x.i1), x.alpha);
+    const Texels<N> top = lerp(fetch<N>(texture, row0 + x.i0), fetch<N>(texture, row0 + x.i1), x.alpha);
+    const Texels<N> bottom = lerp(fetch<N>(texture, row1 + x.i0), fetch<N>(texture, row1 + x.i1), x.alpha);
     return lerp(top, bottom, y.alpha);
 }
 

@@ -148,7 +148,8 @@ Scene textured_plane(std::shared_ptr<const texture::Texture> albedo, std::shared
     return scene;
 }
 
-// A grey checker, one texel per square: 0 and 1 at level 0, ½ at every level above.
+// A grey checker, one texel per square: 0 and 1 at level 0, ½ at every level
+// above, stored as 128/255 (8-bit storage rounds 127.5 up).
 std::shared_ptr<const texture::Texture> checker(int size) {
     std::vector<float> pixels(std::size_t(size) * size);
     for (int y = 0; y < size; ++y)
@@ -178,18 +179,20 @@ TEST_CASE("textures end to end: the quad derivatives pick the mip level") {
             const float expected = (x + y) & 1 ? 1.0f - phase : phase;
             CHECK(level0[std::size_t(y) * 64 + x] == doctest::Approx(expected).epsilon(1e-3));
         }
-    // ρ = 2 and 4: levels 1 and 2, where the checker has averaged to ½.
+    // ρ = 2 and 4: levels 1 and 2, where the checker has averaged to ½ (128/255).
     for (const int size : {128, 256}) {
-        for (const float value : sampled(size)) CHECK(value == doctest::Approx(0.5f).epsilon(1e-4));
+        for (const float value : sampled(size)) CHECK(value == doctest::Approx(128.0f / 255.0f).epsilon(1e-4));
     }
 }
 
-TEST_CASE("textures end to end: a flat normal map changes nothing") {
+TEST_CASE("textures end to end: a flat normal map changes next to nothing") {
     Scene scene = textured_plane(checker(16), nullptr);
     scene.lights.push_back(Light{.position = {0.3f, 0.4f, 1.5f}, .color = {4.0f, 4.0f, 4.0f}});
     Renderer renderer(RenderSettings{.threads = 1});
     const std::vector<float> without = renderer.render(scene).radiance;
-    const float flat[] = {0.5f, 0.5f, 1.0f};  // n = texel·2 − 1 = (0, 0, 1) exactly
+    // The flat normal of 8-bit maps, (128, 128, 255): n = texel·2 − 1 = (1/255, 1/255, 1),
+    // tilted by atan(√2/255) = 0.32°, as on a GPU with an RGBA8 normal map.
+    const float flat[] = {128 / 255.0f, 128 / 255.0f, 1.0f};
     scene.textures.push_back(std::make_shared<const texture::Texture>(
         texture::Texture::from_pixels(1, 1, 3, flat, texture::ColorSpace::linear)));
     scene.materials[0].normal_map.texture = 1;
@@ -200,7 +203,9 @@ TEST_CASE("textures end to end: a flat normal map changes nothing") {
         float worst = 0.0f;
         for (std::size_t i = 0; i < with.size(); ++i)
             worst = std::max(worst, std::abs(with[i] - without[i]) / std::max(1e-3f, without[i]));
-        CHECK(worst <= 1e-5f);
+        // Measured 1.07e-2 (the highlight moves with the 0.32° tilt); a map read
+        // without 2·t − 1 would tilt the normal by 35°.
+        CHECK(worst <= 2e-2f);
     }
 }
 

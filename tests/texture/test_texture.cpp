@@ -13,6 +13,7 @@
 
 #include <doctest/doctest.h>
 #include <OpenImageIO/imagebuf.h>
+#include <tbb/task_arena.h>
 
 #include "texture/texture.hpp"
 #include "test_paths.hpp"
@@ -22,9 +23,20 @@ namespace {
 using namespace tessera;
 using namespace tessera::texture;
 
-// A width×height RGBA texture whose texels are all different: channel c of
-// texel (x, y) is pattern(x, y, c).
-float pattern(int x, int y, int c) { return static_cast<float>(x + 10 * y) + 0.25f * static_cast<float>(c); }
+// A width×height RGBA texture whose texels are all different (up to 5(x + 10y) + c
+// = 255, then it wraps): channel c of texel (x, y) is pattern(x, y, c), an 8-bit value.
+float pattern_code(float x, float y, int c) { return 5.0f * (x + 10.0f * y) + static_cast<float>(c); }
+float pattern(int x, int y, int c) {
+    return static_cast<float>(static_cast<int>(pattern_code(static_cast<float>(x), static_cast<float>(y), c)) % 256) /
+           255.0f;
+}
+// The pattern at a point between texel centres (it is linear in x and y), in [0, 1].
+glm::vec4 pattern_at(float x, float y) {
+    return glm::vec4(pattern_code(x, y, 0), pattern_code(x, y, 1), pattern_code(x, y, 2), pattern_code(x, y, 3)) /
+           255.0f;
+}
+// A value filtered in linear light and stored in 8 bits is within half a step of the exact one.
+constexpr float kHalfStep = 0.5f / 255.0f + 1e-6f;
 
 Texture pattern_texture(int width, int height) {
     std::vector<float> pixels;
@@ -34,12 +46,12 @@ Texture pattern_texture(int width, int height) {
     return Texture::from_pixels(width, height, 4, pixels.data(), ColorSpace::linear);
 }
 
-Texture random_texture(int width, int height, unsigned seed) {
+Texture random_texture(int width, int height, unsigned seed, ColorSpace space = ColorSpace::linear) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<float> pixels(static_cast<std::size_t>(width) * height * 4);
     for (float& p : pixels) p = unit(rng);
-    return Texture::from_pixels(width, height, 4, pixels.data(), ColorSpace::linear);
+    return Texture::from_pixels(width, height, 4, pixels.data(), space);
 }
 
 // Exactly equal, per channel.
@@ -95,7 +107,7 @@ TEST_CASE("texture: bilinear at texel centres returns the texel") {
                     INFO(width << "x" << height << " texel " << x << "," << y);
                     const glm::vec4 sample = texture.sample_bilinear(0, centre(x, width), centre(y, height), wrap);
                     // Exact for power-of-two sizes; (i + 0.5)/5·5 may round by an ulp.
-                    check_close(sample, texture.texel(0, x, y), 1e-5f * (1.0f + static_cast<float>(x + 10 * y)));
+                    check_close(sample, texture.texel(0, x, y), 1e-6f);
                     if (width == 8) check_vec4(sample, texture.texel(0, x, y));
                 }
             }
@@ -175,7 +187,7 @@ TEST_CASE("texture: mip chain sizes follow GL (floor of half, down to 1x1)") {
             CHECK(texture.level(l).offset == offset);
             offset += static_cast<std::size_t>(texture.level(l).width) * texture.level(l).height;
         }
-        CHECK(texture.texels().size() == offset * 4);
+        CHECK(texture.texels().size() == offset);
     }
 }
 
@@ -194,52 +206,78 @@ TEST_CASE("texture: mip levels are box filters of the level above") {
                     const glm::vec4 average = (texture.texel(l - 1, x0, y0) + texture.texel(l - 1, x1, y0) +
                                                texture.texel(l - 1, x0, y1) + texture.texel(l - 1, x1, y1)) *
                                               0.25f;
-                    check_close(texture.texel(l, x, y), average, 1e-5f);
+                    check_close(texture.texel(l, x, y), average, kHalfStep);
                 }
         }
         // The pattern is linear, so level 1 texel (i, j) is the pattern at the footprint centre (2i + ½, 2j + ½).
-        check_close(texture.texel(1, 1, 1), glm::vec4(2.5f + 10.0f * 2.5f) + glm::vec4(0, 0.25f, 0.5f, 0.75f), 1e-5f);
-        check_close(texture.texel(3, 0, 0), glm::vec4(3.5f + 10.0f * 1.5f) + glm::vec4(0, 0.25f, 0.5f, 0.75f), 1e-5f);
+        check_close(texture.texel(1, 1, 1), pattern_at(2.5f, 2.5f), kHalfStep);
+        // Level 3 is filtered from the rounded level 2: half a step of rounding per level.
+        check_close(texture.texel(3, 0, 0), pattern_at(3.5f, 1.5f), 3.0f * kHalfStep);
     }
     SUBCASE("odd sizes: area-weighted over the covered texels") {
         const Texture texture = pattern_texture(5, 3);
         // 5 -> 2: texel 0 covers [0, 2.5): weights .4, .4, .2; texel 1 covers [2.5, 5): .2, .4, .4.
-        // 3 -> 1: each row 1/3. Pattern x + 10y (+ c/4).
-        const glm::vec4 channels(0, 0.25f, 0.5f, 0.75f);
-        check_close(texture.texel(1, 0, 0), glm::vec4(0.4f * 0 + 0.4f * 1 + 0.2f * 2 + 10.0f) + channels, 1e-5f);
-        check_close(texture.texel(1, 1, 0), glm::vec4(0.2f * 2 + 0.4f * 3 + 0.4f * 4 + 10.0f) + channels, 1e-5f);
+        // 3 -> 1: each row 1/3. The pattern is linear in x and y.
+        check_close(texture.texel(1, 0, 0), pattern_at(0.4f * 0 + 0.4f * 1 + 0.2f * 2, 1.0f), kHalfStep);
+        check_close(texture.texel(1, 1, 0), pattern_at(0.2f * 2 + 0.4f * 3 + 0.4f * 4, 1.0f), kHalfStep);
         // The mean is kept at every level: x averages 2, y averages 1.
-        check_close(texture.texel(2, 0, 0), glm::vec4(2.0f + 10.0f) + channels, 1e-5f);
+        check_close(texture.texel(2, 0, 0), pattern_at(2.0f, 1.0f), 2.0f * kHalfStep);
     }
-    SUBCASE("the mean of every level is the mean of the image") {
+    SUBCASE("the mean of every level is the mean of the level above, up to 8-bit rounding") {
         const Texture texture = random_texture(37, 23, 7);
-        glm::dvec4 mean0(0.0);
-        for (int y = 0; y < 23; ++y)
-            for (int x = 0; x < 37; ++x) mean0 += glm::dvec4(texture.texel(0, x, y));
-        mean0 /= 37.0 * 23.0;
-        for (int l = 1; l < texture.level_count(); ++l) {
+        const auto mean_of = [&](int l) {
             glm::dvec4 mean(0.0);
             const MipLevel& level = texture.level(l);
             for (int y = 0; y < level.height; ++y)
                 for (int x = 0; x < level.width; ++x) mean += glm::dvec4(texture.texel(l, x, y));
-            mean /= static_cast<double>(level.width) * level.height;
-            check_close(glm::vec4(mean), glm::vec4(mean0), 1e-6f);
+            return glm::vec4(mean / (static_cast<double>(level.width) * level.height));
+        };
+        for (int l = 1; l < texture.level_count(); ++l) check_close(mean_of(l), mean_of(l - 1), kHalfStep);
+    }
+    SUBCASE("sRGB maps are filtered in linear light, stored sRGB-encoded") {
+        // Black and white side by side: the linear mean ½ is sRGB 0.7354 = 187.5/255 → 188,
+        // where averaging the encoded values would give 128.
+        const std::uint8_t black_white[] = {0, 0, 0, 255, 255, 255};
+        const Texture texture = Texture::from_pixels(2, 1, 3, black_white, ColorSpace::srgb);
+        CHECK(texture.texel_bytes(1, 0, 0) == std::array<std::uint8_t, 4>{188, 188, 188, 255});
+        CHECK(texture.texel(1, 0, 0).r == srgb_decode_table()[188]);
+        const Texture linear = Texture::from_pixels(2, 1, 3, black_white, ColorSpace::linear);
+        CHECK(linear.texel_bytes(1, 0, 0) == std::array<std::uint8_t, 4>{128, 128, 128, 255});  // 127.5 rounds up
+    }
+    SUBCASE("the chain is the same with one thread or many") {
+        for (const auto& [width, height] : {std::array{512, 256}, std::array{301, 199}}) {  // levels of 16K+ texels run in parallel
+            INFO(width << "x" << height);
+            const Texture reference = random_texture(width, height, 9, ColorSpace::srgb);
+            std::vector<std::uint32_t> one_thread;
+            tbb::task_arena(1).execute([&] {
+                const Texture texture = random_texture(width, height, 9, ColorSpace::srgb);
+                one_thread.assign(texture.texels().begin(), texture.texels().end());
+            });
+            CHECK(std::equal(one_thread.begin(), one_thread.end(), reference.texels().begin(), reference.texels().end()));
         }
     }
 }
 
 TEST_CASE("texture: channels expand to RGBA") {
-    const float grey[] = {0.25f, 0.75f};
+    const auto unorm = [](int k) { return static_cast<float>(k) / 255.0f; };
+    const float grey[] = {unorm(64), unorm(191)};
     const Texture g = Texture::from_pixels(2, 1, 1, grey, ColorSpace::linear);
-    check_vec4(g.texel(0, 1, 0), {0.75f, 0.75f, 0.75f, 1.0f});
-    const float grey_alpha[] = {0.25f, 0.5f};
-    check_vec4(Texture::from_pixels(1, 1, 2, grey_alpha, ColorSpace::linear).texel(0, 0, 0), {0.25f, 0.25f, 0.25f, 0.5f});
-    const float rgb[] = {0.1f, 0.2f, 0.3f};
-    check_vec4(Texture::from_pixels(1, 1, 3, rgb, ColorSpace::linear).texel(0, 0, 0), {0.1f, 0.2f, 0.3f, 1.0f});
-    // sRGB decodes colour, never alpha.
+    check_vec4(g.texel(0, 1, 0), {unorm(191), unorm(191), unorm(191), 1.0f});
+    const float grey_alpha[] = {unorm(64), unorm(128)};
+    check_vec4(Texture::from_pixels(1, 1, 2, grey_alpha, ColorSpace::linear).texel(0, 0, 0),
+               {unorm(64), unorm(64), unorm(64), unorm(128)});
+    const float rgb[] = {unorm(25), unorm(51), unorm(77)};
+    check_vec4(Texture::from_pixels(1, 1, 3, rgb, ColorSpace::linear).texel(0, 0, 0),
+               {unorm(25), unorm(51), unorm(77), 1.0f});
+    // Floats are rounded to 8 bits: 0.25·255 = 63.75 → 64, 0.1·255 = 25.5 → 26; out of range clamps.
+    const float unrounded[] = {0.25f, 0.1f, -3.0f, 7.0f};
+    CHECK(Texture::from_pixels(1, 1, 4, unrounded, ColorSpace::linear).texel_bytes(0, 0, 0) ==
+          std::array<std::uint8_t, 4>{64, 26, 0, 255});
+    // sRGB decodes colour, never alpha. 0.5 is stored as 128 (127.5 rounds up).
     const float rgba[] = {0.5f, 1.0f, 0.0f, 0.5f};
-    check_close(Texture::from_pixels(1, 1, 4, rgba, ColorSpace::srgb).texel(0, 0, 0), {0.21404f, 1.0f, 0.0f, 0.5f},
-                1e-5f);
+    check_vec4(Texture::from_pixels(1, 1, 4, rgba, ColorSpace::srgb).texel(0, 0, 0),
+               {srgb_decode_table()[128], 1.0f, 0.0f, unorm(128)});
+    CHECK(srgb_decode_table()[128] == doctest::Approx(srgb_formula(128 / 255.0)).epsilon(1e-6));
     CHECK_THROWS_AS((void)Texture::from_pixels(0, 4, 1, grey, ColorSpace::linear), TextureError);
     CHECK_THROWS_AS((void)Texture::from_pixels(kMaxTextureSize + 1, 1, 1, grey, ColorSpace::linear), TextureError);
 }
@@ -254,6 +292,51 @@ TEST_CASE("texture: sRGB decode is the exact transfer function") {
         INFO(i);
         CHECK(srgb_to_linear(encoded) == doctest::Approx(srgb_formula(encoded)).epsilon(1e-6));
     }
+}
+
+TEST_CASE("texture: 8-bit storage keeps 8-bit images exactly, decodes by table") {
+    std::vector<std::uint8_t> bytes(256 * 4);
+    for (int k = 0; k < 256; ++k)
+        for (int c = 0; c < 4; ++c) bytes[static_cast<std::size_t>(k * 4 + c)] = static_cast<std::uint8_t>((k + 60 * c) % 256);
+    for (const ColorSpace space : {ColorSpace::linear, ColorSpace::srgb}) {
+        const Texture texture = Texture::from_pixels(256, 1, 4, bytes.data(), space);
+        CHECK(texture.memory_bytes() == texture.texels().size() * 4);
+        for (int k = 0; k < 256; ++k) {
+            INFO("texel " << k << (space == ColorSpace::srgb ? " sRGB" : " linear"));
+            const std::array<std::uint8_t, 4> stored = texture.texel_bytes(0, k, 0);
+            for (int c = 0; c < 4; ++c) CHECK(stored[static_cast<std::size_t>(c)] == bytes[static_cast<std::size_t>(k * 4 + c)]);
+            const glm::vec4 decoded = texture.texel(0, k, 0);
+            for (int c = 0; c < 4; ++c) {
+                const int byte = stored[static_cast<std::size_t>(c)];
+                const double exact = c < 3 && space == ColorSpace::srgb ? srgb_formula(byte / 255.0) : byte / 255.0;
+                CHECK(decoded[c] == doctest::Approx(exact).epsilon(1e-6));
+            }
+        }
+    }
+}
+
+TEST_CASE("texture: 8-bit encoders round to the nearest step") {
+    for (int k = 0; k < 256; ++k) {
+        INFO(k);
+        CHECK(encode_srgb8(srgb_decode_table()[static_cast<std::size_t>(k)]) == k);
+        CHECK(encode_unorm8(unorm8_table()[static_cast<std::size_t>(k)]) == k);
+    }
+    // Against the exact encode, away from ties (the float rounding of a threshold).
+    const auto srgb_encode = [](double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1 / 2.4) - 0.055; };
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int checked = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const float x = unit(rng);
+        const double scaled = 255.0 * srgb_encode(x);
+        if (std::abs(scaled - std::floor(scaled) - 0.5) < 1e-4) continue;
+        ++checked;
+        if (encode_srgb8(x) != static_cast<int>(std::lround(scaled))) FAIL_CHECK("x " << x << " → " << scaled);
+    }
+    CHECK(checked > 99000);
+    CHECK(encode_srgb8(-1.0f) == 0);
+    CHECK(encode_srgb8(2.0f) == 255);
+    CHECK(encode_srgb8(std::numeric_limits<float>::quiet_NaN()) == 0);
 }
 
 TEST_CASE("texture: lod from derivatives is log2 of the GL scale factor") {
@@ -381,8 +464,9 @@ TEST_CASE("texture: SIMD trilinear matches the scalar sampler") {
     constexpr std::array kSimdIsas{Isa::sse4, Isa::avx2, Isa::avx512};
     std::array<float, kSimdIsas.size()> worst_per_isa{};
 
-    for (const auto& [width, height] : {std::array{64, 64}, std::array{37, 23}, std::array{1, 5}}) {
-        const Texture texture = random_texture(width, height, 11);
+    for (const auto& [width, height, srgb] : {std::array{64, 64, 0}, std::array{37, 23, 0}, std::array{1, 5, 0},
+                                              std::array{64, 64, 1}, std::array{37, 23, 1}}) {
+        const Texture texture = random_texture(width, height, 11, srgb ? ColorSpace::srgb : ColorSpace::linear);
         const float max_lod = static_cast<float>(texture.level_count()) + 1.0f;
 
         std::mt19937 rng(1234);
@@ -414,7 +498,8 @@ TEST_CASE("texture: SIMD trilinear matches the scalar sampler") {
             for (std::size_t k = 0; k < kSimdIsas.size(); ++k) {
                 const Isa isa = kSimdIsas[k];
                 if (!isa_supported(isa)) continue;
-                INFO(isa_name(isa) << ", " << width << "x" << height << ", wrap " << static_cast<int>(wrap));
+                INFO(isa_name(isa) << ", " << width << "x" << height << (srgb ? " sRGB" : " linear") << ", wrap "
+                                   << static_cast<int>(wrap));
                 std::array<std::vector<float>, 4> actual;
                 for (auto& channel : actual) channel.assign(padded + kSentinelLanes, kSentinel);
                 sample_trilinear(isa, texture, wrap, in,

@@ -1,0 +1,39 @@
+// glTF models loaded once per process: `tessera render A.toml B.toml` (or a
+// check over many scenes) that places the same model in several scenes reads,
+// decodes and mip-maps its file once. Scenes share the model's textures (they
+// are shared_ptr) and copy its meshes, materials and objects.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "scene/gltf_import.hpp"
+
+namespace tessera {
+
+class ModelCache {
+public:
+    // The content of a .gltf or .glb file: imported (import_gltf_file) on the
+    // first call for that file, the same object on every later call. Files are
+    // told apart by their canonical path. Throws what import_gltf_file throws;
+    // a file that failed is not remembered (the next call tries again).
+    // Safe to call from several threads (one import at a time).
+    std::shared_ptr<const GltfContent> load(const std::filesystem::path& path);
+
+    // Files imported so far; a call answered from the cache does not count.
+    std::size_t imports() const;
+    // Forgets every model: their memory goes once no scene shares it. The CLI
+    // does this before rendering its last scene.
+    void clear();
+
+private:
+    mutable std::mutex mutex_;
+    std::map<std::string, std::shared_ptr<const GltfContent>> models_;  // canonical path -> content
+    std::size_t imports_ = 0;
+};
+
+}  // namespace tessera
