@@ -23,8 +23,9 @@
 //   Alpha is ignored: alphaMode MASK and BLEND render as OPAQUE. Other material
 //   extensions (transmission, specular-glossiness, ...) are ignored. A primitive
 //   without a material gets glTF's default (white, metallic 1, roughness 1).
-// - Textures: one Texture per (image, colour space), decoded with OpenImageIO
-//   (PNG, JPEG, ...). Only TEXCOORD_0 is used (texCoord > 0 reads set 0).
+// - Textures: one Texture per (image, colour space), only for images materials
+//   use, decoded in parallel (Texture::decode: PNG or JPEG, straight to RGBA8,
+//   sRGB maps kept encoded). Only TEXCOORD_0 is used (texCoord > 0 reads set 0).
 //   Wrapping follows the sampler's wrapS; wrapT is ignored; MIRRORED_REPEAT
 //   wraps as REPEAT. Filters are always trilinear. glTF's UV origin (top-left)
 //   is Texture's: no flip.

@@ -67,7 +67,9 @@
 //   lights = true                   # whether the file's KHR_lights_punctual lights are added; default true
 //
 // A model brings its meshes, materials and textures (gltf_import.hpp says what
-// is supported); its cameras are not used ([camera] is). An object's model
+// is supported); its cameras are not used ([camera] is). A file placed several
+// times is imported once (and once per process with load_scene_file(path,
+// ModelCache&), model_cache.hpp); its placements share its textures. An object's model
 // matrix is translate · Rz · Ry · Rx · scale. Integers are
 // accepted wherever a number is expected; NaN and infinities are rejected.
 // Each built-in mesh is created once and shared by all objects that use it;
