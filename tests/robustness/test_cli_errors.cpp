@@ -15,6 +15,7 @@
 #include <doctest/doctest.h>
 
 #include "robustness/bad_scenes.hpp"
+#include "scene/gltf_test_files.hpp"
 #include "test_paths.hpp"
 
 namespace fs = std::filesystem;
@@ -342,4 +343,25 @@ TEST_CASE("--aov adds channels to the EXR and leaves the PNG as it was") {
     CHECK(run.err.empty());
     CHECK(read_file(dir / "aov.png") == read_file(dir / "plain.png"));
     CHECK(fs::file_size(dir / "aov.exr") > fs::file_size(dir / "plain.exr"));
+}
+
+// The CLI loads a model that several scenes of one call place once: with
+// --stats each scene reports the textures it decoded, and only the first decodes any.
+TEST_CASE("the CLI imports a model shared by several scenes once") {
+    const fs::path dir = tessera::test::output_dir("cli_model_cache");
+    tessera::test::write_bytes(dir / "model.glb", tessera::test::test_glb());
+    const std::string scene = std::string(kSmallScene) + "[[models]]\nfile = \"model.glb\"\n";
+    write_file(dir / "first.toml", scene);
+    write_file(dir / "second.toml", scene);
+    const Run run = tessera_render(dir, {(dir / "first.toml").string(), (dir / "second.toml").string(), "-o",
+                                         (dir / "{scene}.png").string(), "--stats", "--threads", "1"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    const std::size_t first = run.out.find("images: 2 textures");
+    const std::size_t second = run.out.find("images: 0 textures");
+    CHECK_MESSAGE(first != std::string::npos, run.out);
+    CHECK_MESSAGE(second != std::string::npos, run.out);
+    CHECK(first < second);
+    CHECK(run.out.find("images: 2 textures", first + 1) == std::string::npos);
+    CHECK(fs::exists(dir / "first.png"));
+    CHECK(fs::exists(dir / "second.png"));
 }
