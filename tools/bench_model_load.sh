@@ -73,11 +73,14 @@ def add(name, value):
 for r in runs:
     m = re.search(r"time ([\d.]+) (\d+)", r)
     add("wall s", m.group(1)); add("peak RSS MB", int(m.group(2)) / 1024)
-    m = re.search(r"load ([\d.]+) ms \(glTF file read ([\d.]+), parse ([\d.]+), convert ([\d.]+), images ([\d.]+)\), "
-                  r"render ([\d.]+) ms, encode ([\d.]+) ms", r)
+    m = re.search(r"load ([\d.]+) ms \(glTF file read ([\d.]+), parse ([\d.]+), convert ([\d.]+), images ([\d.]+)\)", r)
     if m:
-        for name, value in zip(["load", "file read", "parse", "convert", "images", "render", "encode"], m.groups()):
+        for name, value in zip(["load", "file read", "parse", "convert", "images"], m.groups()):
             add(name + " ms", value)
+    m = re.search(r"kernels: ([\d.]+) ms", r)
+    if m: add("render ms", m.group(1))
+    m = re.search(r"encode ([\d.]+) ms", r)
+    if m: add("encode ms", m.group(1))
     m = re.search(r"images: (\d+) textures, ([\d.]+) MB; thread time: decode ([\d.]+) ms, upload ([\d.]+) ms, "
                   r"mips ([\d.]+) ms", r)
     if m:

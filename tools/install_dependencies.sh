@@ -18,6 +18,9 @@ if [ "${1:-all}" != render ]; then
     clang libclang-rt-14-dev
     # The fresh-machine check (tools/fresh_machine_check.sh): minimal Debian 12 roots.
     mmdebstrap
+    # The one-node Slurm cluster of tools/slurm/check_cluster.sh (python3 picks free ports, procps' pgrep
+    # finds what the daemons started).
+    slurmctld slurmd slurm-client munge python3 procps
   )
 fi
 missing=()

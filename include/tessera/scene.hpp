@@ -17,6 +17,7 @@ namespace tessera {
 namespace texture {
 class Texture;  // texture/texture.hpp: an image with its mip chain, loaded with the scene
 }
+struct Animation;  // tessera/animation.hpp: what changes from frame to frame
 
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
@@ -162,6 +163,10 @@ struct Scene {
     std::vector<std::shared_ptr<const texture::Texture>> textures;  // what TextureSlot::texture indexes
     std::vector<Mesh> meshes;
     std::vector<Object> objects;
+    // A scene file's [animation], or null for a still scene. The values above
+    // are those of the current frame (frame 0 as loaded); set_scene_frame
+    // (tessera/animation.hpp) moves the scene to another.
+    std::shared_ptr<const Animation> animation;
 };
 
 // A scene file that cannot be used. what() reads "file:line:column: message"

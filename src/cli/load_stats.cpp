@@ -17,19 +17,20 @@ LoadCounters read_load_counters() {
             textures.bytes.load()};
 }
 
-void print_load_stats(const LoadCounters& before, const LoadCounters& after, const SceneWallTimes& wall) {
+void print_load_stats(const LoadCounters& before, const LoadCounters& after, double load_ms) {
     const auto ms = [&](std::int64_t LoadCounters::*field) { return double(after.*field - before.*field) * 1e-6; };
+    std::printf("load %.1f ms (glTF file read %.1f, parse %.1f, convert %.1f, images %.1f)\n", load_ms,
+                ms(&LoadCounters::file_read_ns), ms(&LoadCounters::parse_ns), ms(&LoadCounters::convert_ns),
+                ms(&LoadCounters::images_ns));
+    std::printf("images: %lld textures, %.1f MB; thread time: decode %.1f ms, upload %.1f ms, mips %.1f ms\n",
+                (long long)(after.textures - before.textures), double(after.texture_bytes - before.texture_bytes) / 1e6,
+                ms(&LoadCounters::decode_ns), ms(&LoadCounters::upload_ns), ms(&LoadCounters::mips_ns));
+}
+
+void print_write_stats(double encode_ms) {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
-    std::printf("load %.1f ms (glTF file read %.1f, parse %.1f, convert %.1f, images %.1f), render %.1f ms, "
-                "encode %.1f ms\n",
-                wall.load_ms, ms(&LoadCounters::file_read_ns), ms(&LoadCounters::parse_ns),
-                ms(&LoadCounters::convert_ns), ms(&LoadCounters::images_ns), wall.render_ms, wall.encode_ms);
-    std::printf("images: %lld textures, %.1f MB; thread time: decode %.1f ms, upload %.1f ms, mips %.1f ms; "
-                "peak RSS %.1f MB\n",
-                (long long)(after.textures - before.textures), double(after.texture_bytes - before.texture_bytes) / 1e6,
-                ms(&LoadCounters::decode_ns), ms(&LoadCounters::upload_ns), ms(&LoadCounters::mips_ns),
-                double(usage.ru_maxrss) / 1024.0);
+    std::printf("encode %.1f ms; peak RSS %.1f MB\n", encode_ms, double(usage.ru_maxrss) / 1024.0);
 }
 
 }  // namespace tessera::cli

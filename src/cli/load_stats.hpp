@@ -16,15 +16,12 @@ struct LoadCounters {
 };
 LoadCounters read_load_counters();
 
-// Wall times of one scene's steps, measured by the CLI.
-struct SceneWallTimes {
-    double load_ms = 0.0;    // load_scene_file, all of it
-    double render_ms = 0.0;  // Renderer::render
-    double encode_ms = 0.0;  // every output written
-};
+// Prints a scene's load split (before → after is this scene's part; load_ms: the wall
+// time of load_scene_file, all of it).
+void print_load_stats(const LoadCounters& before, const LoadCounters& after, double load_ms);
 
-// Prints the load split (before → after is this scene's part) and the peak RSS so far.
-void print_load_stats(const LoadCounters& before, const LoadCounters& after, const SceneWallTimes& wall);
+// Prints the wall time a frame's outputs took to encode and write, and the peak RSS so far.
+void print_write_stats(double encode_ms);
 
 inline double milliseconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

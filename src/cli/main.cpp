@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <set>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -14,7 +14,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include "batch/batch_render.hpp"
+#include "batch/frames.hpp"
+#include "batch/shard.hpp"
 #include "cli/bench_command.hpp"
+#include "cli/contact_sheet_command.hpp"
 #include "cli/load_stats.hpp"
 #include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
@@ -24,55 +30,28 @@
 
 namespace {
 
-constexpr std::string_view kScenePlaceholder = "{scene}";
-
 struct RenderCommand {
     std::vector<std::string> scene_paths;
-    std::vector<std::string> outputs;  // may hold {scene}, replaced by each scene file's stem
+    std::vector<std::string> outputs;  // may hold {scene} and {frame} (src/batch/frames.hpp)
     int width = 0;                     // 0: the scene's own
     int height = 0;
     int msaa = 0;                      // 0: the scene's own
     bool stats = false;
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
+    // Batch rendering (src/batch/): frame ranges, shards, resuming, records.
+    std::string frames;                 // --frames 0-239:2; "" = each scene as loaded (frame 0)
+    std::optional<std::string> shard;   // --shard I/N
+    std::optional<int> shard_count;     // --shard-count N (Kubernetes Indexed Jobs)
+    bool skip_existing = false;
+    std::string log_path;
+    bool serial_writes = false;
 };
-
-// `pattern` with every {scene} replaced by the scene file's stem.
-std::string output_path_for(std::string pattern, const std::string& scene_path) {
-    const std::string stem = std::filesystem::path(scene_path).stem().string();
-    for (std::size_t at = pattern.find(kScenePlaceholder); at != std::string::npos;
-         at = pattern.find(kScenePlaceholder, at + stem.size())) {
-        pattern.replace(at, kScenePlaceholder.size(), stem);
-    }
-    return pattern;
-}
 
 bool is_exr_path(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     return ext == ".exr";
-}
-
-// Mistakes in the command itself, found before any scene is rendered.
-void check_render_command(const RenderCommand& cmd) {
-    for (const std::string& out : cmd.outputs)
-        if (!tessera::is_supported_image_path(out))
-            throw tessera::ImageError(out + ": unsupported output format (expected .png or .exr)");
-    if (!cmd.aov_lists.empty() && std::none_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path))
-        throw std::invalid_argument("--aov needs an .exr output: PNG holds only the display image");
-    if (cmd.scene_paths.size() < 2) return;
-    for (const std::string& out : cmd.outputs) {
-        if (out.find(kScenePlaceholder) == std::string::npos)
-            throw std::invalid_argument("with several scenes every -o must contain {scene} (the scene file's stem), "
-                                        "got '" + out + "'");
-    }
-    std::set<std::string> stems;
-    for (const std::string& path : cmd.scene_paths) {
-        const std::string stem = std::filesystem::path(path).stem().string();
-        if (!stems.insert(stem).second)
-            throw std::invalid_argument("two scene files have the stem '" + stem +
-                                        "': their outputs would overwrite each other");
-    }
 }
 
 void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage& image) {
@@ -85,18 +64,17 @@ void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);
 }
 
-// Renders one scene to every output; throws on the first error before the
-// render, and after it tries every output and throws if any write failed.
-// Models come from `models`; after loading the last scene they are dropped
-// (the scene holds what it uses), so its frame does not pay for them.
-void render_scene(const RenderCommand& cmd, const std::string& scene_path, tessera::Renderer& renderer,
-                  tessera::ModelCache& models, bool last_scene) {
-    const tessera::cli::LoadCounters counters_before = tessera::cli::read_load_counters();
-    tessera::cli::SceneWallTimes wall;
-    auto start = std::chrono::steady_clock::now();
+// A scene file with the command line's size overrides; the batch validates each frame.
+// Models come from `models`; after loading the last scene they are dropped (the scene
+// holds what it uses), so its frames do not pay for them.
+tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scene_path, tessera::ModelCache& models) {
+    const tessera::cli::LoadCounters before = tessera::cli::read_load_counters();
+    const auto start = std::chrono::steady_clock::now();
     tessera::Scene scene = tessera::load_scene_file(scene_path, models);
-    if (last_scene) models.clear();
-    wall.load_ms = tessera::cli::milliseconds_since(start);
+    if (scene_path == cmd.scene_paths.back()) models.clear();
+    if (cmd.stats)
+        tessera::cli::print_load_stats(before, tessera::cli::read_load_counters(),
+                                       tessera::cli::milliseconds_since(start));
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;
@@ -107,51 +85,42 @@ void render_scene(const RenderCommand& cmd, const std::string& scene_path, tesse
                                     std::to_string(static_cast<long long>(scene.width) * scene.height) +
                                     " pixels; at most " + std::to_string(tessera::kMaxImagePixels) + " are allowed");
     }
-    tessera::validate_scene(scene);  // the renderer trusts its input
-
-    start = std::chrono::steady_clock::now();
-    const tessera::RenderedImage& image = renderer.render(scene);  // once, whatever the number of outputs
-    wall.render_ms = tessera::cli::milliseconds_since(start);
-    start = std::chrono::steady_clock::now();
-    std::string pending_error;
-    for (const std::string& pattern : cmd.outputs) {
-        try {
-            tessera::write_image(image, output_path_for(pattern, scene_path));
-        } catch (const std::exception& e) {
-            if (!pending_error.empty()) std::fprintf(stderr, "tessera: error: %s\n", pending_error.c_str());
-            pending_error = e.what();
-        }
-    }
-    wall.encode_ms = tessera::cli::milliseconds_since(start);
-    if (!pending_error.empty()) throw tessera::ImageError(pending_error);
-    if (cmd.stats) {
-        print_stats(renderer, image);
-        tessera::cli::print_load_stats(counters_before, tessera::cli::read_load_counters(), wall);
-    }
+    return scene;
 }
 
 // One failing scene does not stop the others; the exit status says whether any failed.
 int run_render(const RenderCommand& cmd) {
-    check_render_command(cmd);
+    tessera::batch::BatchJob job;
+    job.scene_paths = cmd.scene_paths;
+    job.outputs = cmd.outputs;
+    if (!cmd.frames.empty()) job.frames = tessera::batch::parse_frame_ranges(cmd.frames);
+    job.shard = tessera::batch::choose_shard(cmd.shard, cmd.shard_count, tessera::batch::process_environment());
+    job.skip_existing = cmd.skip_existing;
+    job.log_path = cmd.log_path;
+    job.write_behind = !cmd.serial_writes;
+    if (job.frames || job.shard.sharded())
+        job.progress = isatty(fileno(stdout)) ? tessera::batch::ProgressDisplay::terminal
+                                              : tessera::batch::ProgressDisplay::lines;
+    tessera::ModelCache models;  // a model several scenes place is loaded once
+    job.load_scene = [&cmd, &models](const std::string& path) { return load_for_render(cmd, path, models); };
+    if (cmd.stats) job.after_frame = print_stats, job.after_write = tessera::cli::print_write_stats;
+    tessera::batch::check_job(job);
+    if (!cmd.aov_lists.empty() && std::none_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path))
+        throw std::invalid_argument("--aov needs an .exr output: PNG holds only the display image");
+
     tessera::RenderSettings settings = cmd.settings;
     // The HDR radiance image costs memory bandwidth: keep it only for EXR output.
     settings.keep_radiance = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path);
     for (const std::string& list : cmd.aov_lists) tessera::parse_aov_list(list, settings.aovs);
-    tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from scene to scene
-    tessera::ModelCache models;            // a model several scenes place is loaded once
-    std::vector<std::string> failed;
-    for (const std::string& scene_path : cmd.scene_paths) {
-        try {
-            render_scene(cmd, scene_path, renderer, models, &scene_path == &cmd.scene_paths.back());
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "tessera: error: %s\n", e.what());
-            failed.push_back(scene_path);
-        }
-    }
+    tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from frame to frame
+    const tessera::batch::BatchResult result = tessera::batch::run_batch(job, renderer, stdout, stderr);
+    const std::vector<std::string>& failed = result.failed_scenes;
+    if (job.skip_existing && result.frames_skipped > 0)
+        std::printf("skipped %d frames already written; rendered %d\n", result.frames_skipped, result.frames_rendered);
     if (cmd.scene_paths.size() > 1) {
-        const std::size_t rendered = cmd.scene_paths.size() - failed.size();
-        std::string summary = "rendered " + std::to_string(rendered) + " of " +
-                              std::to_string(cmd.scene_paths.size()) + " scenes";
+        const std::size_t attempted = std::size_t(result.scenes_with_work);
+        const std::size_t rendered = attempted - failed.size();
+        std::string summary = "rendered " + std::to_string(rendered) + " of " + std::to_string(attempted) + " scenes";
         for (std::size_t i = 0; i < failed.size(); ++i) summary += (i == 0 ? "; failed: " : ", ") + failed[i];
         std::fprintf(failed.empty() ? stdout : stderr, "%s%s\n", failed.empty() ? "" : "tessera: error: ",
                      summary.c_str());
@@ -176,6 +145,25 @@ void add_frame_options(CLI::App* command, int& width, int& height, int& msaa, te
         "Shade every light in every tile, ranges or not (to compare with the culled image)");
 }
 
+// Batch rendering: frame ranges of animated scenes, sharding, resuming (README "Batch rendering").
+void add_batch_options(CLI::App* command, RenderCommand& render) {
+    command->add_option("--frames", render.frames,
+                        "Frames of each scene's [animation] to render: A-B[:STEP] (inclusive), comma-separated; "
+                        "-o must then contain {frame} or {frame:0N}. Without it: frame 0");
+    command->add_option("--shard", render.shard,
+                        "Render only part I of N (1-based) of the frames and scenes; default: from "
+                        "SLURM_ARRAY_TASK_ID/_MIN/_COUNT/_STEP, or JOB_COMPLETION_INDEX with --shard-count");
+    command->add_option("--shard-count", render.shard_count, "The number of parts, N, for JOB_COMPLETION_INDEX");
+    command->add_flag("--skip-existing", render.skip_existing,
+                      "Do not render frames whose every output file exists (resume a pre-empted task)");
+    command->add_option("--log", render.log_path,
+                        "Append one JSON record per rendered frame to this file (scene, frame, file, ms, triangles, "
+                        "fragments, ...)");
+    command->add_flag("--serial-writes", render.serial_writes,
+                      "Write each frame before rendering the next (by default the next frame renders while the "
+                      "previous one is encoded: same files, one more image in memory)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -198,6 +186,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
     add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
+    add_batch_options(render_app, render);
 
     tessera::cli::BenchCommand bench;
     CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");
@@ -217,6 +206,9 @@ int main(int argc, char** argv) {
                           "(fragments x lights per tile)")
         ->check(CLI::IsMember({"time", "work"}));
 
+    tessera::cli::ContactSheetCommand contact_sheet;
+    CLI::App* contact_sheet_app = tessera::cli::add_contact_sheet_command(app, contact_sheet);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -225,6 +217,7 @@ int main(int argc, char** argv) {
     try {
         if (*render_app) return run_render(render);
         if (*bench_app) return tessera::cli::run_bench(bench);
+        if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 1;

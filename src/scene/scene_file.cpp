@@ -66,6 +66,9 @@
 //   scale = 1                       # translate · Rz · Ry · Rx · scale
 //   lights = true                   # whether the file's KHR_lights_punctual lights are added; default true
 //
+//   [animation]                     # frames, fps, camera orbit or keyframes, object and light
+//                                   # keyframes: format in src/scene/animation_file.cpp
+//
 // A model brings its meshes, materials and textures (gltf_import.hpp says what
 // is supported); its cameras are not used ([camera] is). A file placed several
 // times is imported once (and once per process with load_scene_file(path,
@@ -101,6 +104,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
 
+#include "scene/animation_file.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "tessera/scene.hpp"
@@ -161,7 +165,7 @@ public:
         : source_(std::move(source)), base_dir_(std::filesystem::path(source_).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
-        check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models"});
+        check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models", "animation"});
         Scene scene;
         scene.source = source_;
         if (const toml::node* output = root.get("output")) {
@@ -176,6 +180,9 @@ public:
         // The file's own textures first: models append theirs after them.
         scene.textures = std::move(textures_);
         if (const toml::node* models = root.get("models")) read_models(*models, scene);
+        // [animation] (src/scene/animation_file.cpp): the scene as loaded is its frame 0.
+        scene.animation = read_animation(root, source_, scene);
+        set_scene_frame(scene, 0);
         return scene;
     }
 
