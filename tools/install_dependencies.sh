@@ -21,6 +21,8 @@ if [ "${1:-all}" != render ]; then
     # The one-node Slurm cluster of tools/slurm/check_cluster.sh (python3 picks free ports, procps' pgrep
     # finds what the daemons started).
     slurmctld slurmd slurm-client munge python3 procps
+    # tessera check's report tested in a real browser (tests/check/report_browser_test.py).
+    chromium python3
   )
 fi
 missing=()

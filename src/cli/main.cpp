@@ -20,6 +20,7 @@
 #include "batch/frames.hpp"
 #include "batch/shard.hpp"
 #include "cli/bench_command.hpp"
+#include "cli/check_command.hpp"
 #include "cli/contact_sheet_command.hpp"
 #include "cli/load_stats.hpp"
 #include "scene/model_cache.hpp"
@@ -209,15 +210,20 @@ int main(int argc, char** argv) {
     tessera::cli::ContactSheetCommand contact_sheet;
     CLI::App* contact_sheet_app = tessera::cli::add_contact_sheet_command(app, contact_sheet);
 
+    tessera::cli::CheckCommand check;
+    CLI::App* check_app = tessera::cli::add_check_command(app, check);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        const int status = app.exit(e);
+        return status != 0 && *check_app ? tessera::cli::kCheckUsageError : status;
     }
     try {
         if (*render_app) return run_render(render);
         if (*bench_app) return tessera::cli::run_bench(bench);
         if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
+        if (*check_app) return tessera::cli::run_check(check);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 1;

@@ -2,71 +2,74 @@
 
 #include <algorithm>
 
-#include "golden_compare.hpp"
+#include "check/report.hpp"
+#include "check/runner.hpp"
+#include "check/suite.hpp"
 #include "tessera/renderer.hpp"
 #include "test_paths.hpp"
 
 using namespace tessera;
 
-// Every scene in scenes/ has a golden image golden/<scene>.png made by
-// tools/regenerate_golden.sh; a render that drifts from it fails here.
-TEST_CASE("every scene matches its golden image") {
-    const std::vector<std::filesystem::path> scenes = test::scene_files();
-    REQUIRE_FALSE(scenes.empty());
-    Renderer renderer;
-    for (const auto& scene_file : scenes) {
-        const std::string name = scene_file.stem().string();
-        SUBCASE(name.c_str()) {
-            const RenderedImage& image = renderer.render(load_scene_file(scene_file));
-            const auto result = test::compare_with_golden(image, test::source_dir() / "golden" / (name + ".png"),
-                                                          std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures", name);
-            CHECK_MESSAGE(result.passed, name << ": " << result.message);
-            MESSAGE(name << ": " << result.message);
-        }
-    }
-}
+namespace {
 
-// scenes/gltf/ renders the shared sample models (golden/gltf/<scene>.png), when they are there.
-TEST_CASE("every sample-model scene matches its golden image") {
+std::filesystem::path golden_manifest() { return test::source_dir() / "tests" / "golden" / "check.toml"; }
+
+// The report of the golden suite: kept in the build tree, where CI picks it up when a run fails.
+std::filesystem::path golden_report_dir() { return std::filesystem::path(TESSERA_BINARY_DIR) / "golden_report"; }
+
+bool is_sample_model_scene(const check::SceneEntry& entry) { return entry.name.starts_with("gltf/"); }
+
+}  // namespace
+
+// Every scene in scenes/ (and scenes/gltf/ when the sample models are there)
+// matches its golden image golden/<name>.png under tests/golden/check.toml's
+// thresholds: the same code and manifest as `tessera check tests/golden/check.toml`.
+TEST_CASE("every scene matches its golden image (tests/golden/check.toml through the check library)") {
+    check::Suite suite = check::load_manifest(golden_manifest(), {});
+    REQUIRE(std::any_of(suite.scenes.begin(), suite.scenes.end(), [](const auto& e) { return e.name == "spheres"; }));
     if (!std::filesystem::is_directory(test::assets_dir())) {
-        MESSAGE("skipped: no sample models at " << test::assets_dir().string());
-        return;
+        MESSAGE("skipped scenes/gltf/: no sample models at " << test::assets_dir().string());
+        std::erase_if(suite.scenes, is_sample_model_scene);
     }
-    const std::vector<std::filesystem::path> scenes = test::gltf_scene_files();
-    REQUIRE_FALSE(scenes.empty());
-    Renderer renderer;
-    for (const auto& scene_file : scenes) {
-        const std::string name = scene_file.stem().string();
-        SUBCASE(name.c_str()) {
-            const std::filesystem::path golden = test::source_dir() / "golden" / "gltf" / (name + ".png");
-            const RenderedImage& image = renderer.render(load_scene_file(scene_file));
-            const auto result = test::compare_with_golden(image, golden,
-                                                          std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures",
-                                                          "gltf_" + name);
-            CHECK_MESSAGE(result.passed, name << ": " << result.message);
-            MESSAGE(name << ": " << result.message);
-        }
+    check::RunOptions options;
+    options.report_dir = golden_report_dir();
+    const check::CheckRun run = check::run_check(suite.scenes, options);
+    check::write_html_report(run, options.report_dir);
+    check::write_junit_report(run, options.report_dir / "junit.xml");
+    check::write_json_summary(run, options.report_dir / "summary.json");
+    for (const check::SceneResult& r : run.scenes) {
+        const bool passed = r.status == check::Status::pass || r.status == check::Status::warn;
+        CHECK_MESSAGE(passed, check::describe(r) << " (report: " << (options.report_dir / "index.html").string() << ")");
+        MESSAGE(check::describe(r));
     }
+    CHECK(run.exit_status() == 0);
 }
 
-// The comparison itself: what it lets through and what it catches.
-TEST_CASE("golden comparison: a few pixels a few steps off pass, more or further fail") {
-    Renderer renderer;
-    const RenderedImage rendered = renderer.render(load_scene_file(test::scene_path("spheres.toml")));
-    const std::filesystem::path golden = test::source_dir() / "golden" / "spheres.png";
-    const std::filesystem::path failures = std::filesystem::path(TESSERA_BINARY_DIR) / "golden_failures";
+// The golden thresholds themselves: what they let through and what they catch.
+TEST_CASE("golden thresholds: a few pixels a few steps off pass, more or further fail") {
+    const check::Suite suite = check::load_manifest(golden_manifest(), {});
+    const auto spheres = std::find_if(suite.scenes.begin(), suite.scenes.end(), [](const auto& e) { return e.name == "spheres"; });
+    REQUIRE(spheres != suite.scenes.end());
+    RenderSettings settings;
+    settings.keep_radiance = false;
+    Renderer renderer(settings);
+    const RenderedImage rendered = renderer.render(load_scene_file(spheres->scene));
+    const OIIO::ImageBuf golden = check::read_golden(test::source_dir() / "golden" / "spheres.png");
     const auto shifted = [&](int pixels, int steps) {
         RenderedImage image = rendered;
         for (int p = 0; p < pixels; ++p) {
             std::uint8_t& value = image.display[std::size_t(p) * 3 * 997 % image.display.size() / 3 * 3];
             value = std::uint8_t(value >= 128 ? value - steps : value + steps);
         }
-        const auto result = test::compare_with_golden(image, golden, failures, "comparison_check");
-        MESSAGE(pixels << " pixels " << steps << " steps: " << result.message);
-        return result.passed;
+        const check::Comparison result = check::compare_images(check::actual_image(image, check::GoldenKind::png), golden,
+                                                               spheres->thresholds, check::GoldenKind::png);
+        MESSAGE(pixels << " pixels " << steps << " steps: " << check::status_name(result.status) << " " << result.reason);
+        return result.status;
     };
-    CHECK(shifted(0, 0));
-    CHECK(shifted(3, 3));         // a glint or two
-    CHECK_FALSE(shifted(20, 3));  // more pixels than kGoldenMaxFailFraction allows
-    CHECK_FALSE(shifted(1, 20));  // one pixel, but beyond kGoldenMaxError
+    CHECK(shifted(0, 0) == check::Status::pass);
+    CHECK(shifted(3, 3) == check::Status::warn);   // a glint or two: counted, not failed
+    CHECK(shifted(20, 3) == check::Status::fail);  // more pixels than fail_ratio allows
+    CHECK(shifted(1, 20) == check::Status::fail);  // one pixel, but beyond max_error
+    CHECK(shifted(1000, 2) == check::Status::fail);  // within the fail tolerance, but more than max_warn_ratio of the image
+    CHECK(shifted(900, 2) == check::Status::warn);
 }

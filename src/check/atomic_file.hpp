@@ -1,0 +1,17 @@
+// Output files written to a temporary name beside the target and renamed into
+// place, so that nothing is ever half-written.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include <OpenImageIO/imagebuf.h>
+
+namespace tessera::check {
+
+// Throws std::runtime_error naming the file.
+void write_text_atomically(const std::filesystem::path& path, std::string_view text);
+void write_png_atomically(const OIIO::ImageBuf& image, const std::filesystem::path& path);  // as 8-bit
+void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);
+
+}  // namespace tessera::check

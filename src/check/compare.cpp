@@ -1,0 +1,184 @@
+#include "check/compare.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <OpenImageIO/imagebufalgo.h>
+
+namespace tessera::check {
+
+std::string_view status_name(Status status) {
+    switch (status) {
+        case Status::error: return "error";
+        case Status::fail: return "fail";
+        case Status::missing: return "missing";
+        case Status::warn: return "warn";
+        case Status::pass: return "pass";
+    }
+    return "?";
+}
+
+namespace {
+
+// A difference as the golden's units read best: 8-bit steps for PNG, radiance for EXR.
+std::string amount(double value, GoldenKind kind) {
+    char text[64];
+    if (kind == GoldenKind::png)
+        std::snprintf(text, sizeof text, "%.3g/255", value * 255.0);
+    else
+        std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+}
+
+std::string count_text(double pixels) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f", std::floor(pixels));
+    return text;
+}
+
+std::string channel_list(const OIIO::ImageSpec& spec) {
+    std::string names;
+    for (int c = 0; c < spec.nchannels; ++c) {
+        if (c) names += ",";
+        names += c < int(spec.channelnames.size()) ? spec.channelnames[c] : "?";
+    }
+    return names;
+}
+
+}  // namespace
+
+GoldenKind golden_kind_for(const std::filesystem::path& golden) {
+    std::string ext = golden.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".exr" ? GoldenKind::exr : GoldenKind::png;
+}
+
+OIIO::ImageBuf actual_image(const RenderedImage& image, GoldenKind kind) {
+    if (kind == GoldenKind::png) {
+        const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+        return OIIO::ImageBuf(spec, const_cast<std::uint8_t*>(image.display.data()));
+    }
+    if (image.radiance.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
+        throw std::logic_error("an EXR golden needs the render's radiance (RenderSettings::keep_radiance)");
+    const OIIO::ImageSpec float_spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
+    const OIIO::ImageBuf radiance(float_spec, const_cast<float*>(image.radiance.data()));
+    // Rounded to half as the EXR file stores it, so that a render matches the golden it would write, bit for bit.
+    OIIO::ImageSpec half_spec(image.width, image.height, 3, OIIO::TypeDesc::HALF);
+    half_spec.channelnames = {"R", "G", "B"};
+    OIIO::ImageBuf half(half_spec);
+    half.copy_pixels(radiance);
+    return half;
+}
+
+OIIO::ImageBuf read_golden(const std::filesystem::path& golden) {
+    OIIO::ImageBuf buffer(golden.string());
+    if (!buffer.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw std::runtime_error(golden.string() + ": cannot read golden image: " + buffer.geterror());
+    return buffer;
+}
+
+Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, const Thresholds& thresholds,
+                          GoldenKind kind) {
+    Comparison result;
+    const OIIO::ImageSpec& a = actual.spec();
+    const OIIO::ImageSpec& g = golden.spec();
+    if (a.width != g.width || a.height != g.height) {
+        result.reason = "size differs: golden " + std::to_string(g.width) + "x" + std::to_string(g.height) +
+                        ", render " + std::to_string(a.width) + "x" + std::to_string(a.height);
+        return result;
+    }
+    const bool channels_match = kind == GoldenKind::png
+                                    ? g.nchannels == 3
+                                    : (g.nchannels == 3 && g.channelnames[0] == "R" && g.channelnames[1] == "G" &&
+                                       g.channelnames[2] == "B");
+    if (!channels_match) {
+        result.reason = "channels differ: golden has " + std::to_string(g.nchannels) + " (" + channel_list(g) +
+                        "), the render " + (kind == GoldenKind::png ? "3 (R,G,B display values)" : "3 (R,G,B radiance)");
+        return result;
+    }
+
+    const OIIO::ImageBufAlgo::CompareResults cmp =
+        OIIO::ImageBufAlgo::compare(actual, golden, float(thresholds.fail), float(thresholds.warn),
+                                    float(thresholds.fail_relative), float(thresholds.warn_relative));
+    // OpenImageIO 2.4 also sets `error` when any pixel fails: only an error without failures is a real one.
+    if (cmp.error && cmp.nfail == 0) {
+        result.reason = "comparison error: " + OIIO::geterror();
+        return result;
+    }
+    Metrics& m = result.metrics;
+    m.pixels = std::int64_t(a.width) * a.height;
+    m.max_error = cmp.maxerror;
+    m.max_x = cmp.maxx;
+    m.max_y = cmp.maxy;
+    m.max_channel = cmp.maxc;
+    m.mean_error = cmp.meanerror;
+    m.rms_error = cmp.rms_error;
+    m.psnr = cmp.PSNR;
+    m.pixels_over_fail = std::int64_t(cmp.nfail);
+    m.pixels_over_warn = std::int64_t(cmp.nwarn);  // OpenImageIO counts failing pixels here too
+    if (thresholds.perceptual) {
+        OIIO::ImageBuf actual_linear = actual, golden_linear = golden;
+        if (kind == GoldenKind::png) {  // Yee's test wants linear light; PNGs hold gamma-2.2 display values
+            actual_linear = OIIO::ImageBufAlgo::pow(actual, 2.2f);
+            golden_linear = OIIO::ImageBufAlgo::pow(golden, 2.2f);
+        }
+        OIIO::ImageBufAlgo::CompareResults yee;
+        m.perceptual_fail = OIIO::ImageBufAlgo::compare_Yee(actual_linear, golden_linear, yee);
+    }
+    result.compared = true;
+
+    const double fail_allowed = allowed_pixels(thresholds.fail_pixels, thresholds.fail_ratio, m.pixels);
+    const double warn_allowed = allowed_pixels(thresholds.warn_pixels, thresholds.warn_ratio, m.pixels);
+    const double max_warn_allowed = allowed_pixels(thresholds.max_warn_pixels, thresholds.max_warn_ratio, m.pixels);
+    std::string fails;
+    const auto add = [](std::string& list, const std::string& what) { list += (list.empty() ? "" : "; ") + what; };
+    if (double(m.pixels_over_fail) > fail_allowed)
+        add(fails, std::to_string(m.pixels_over_fail) + " pixels differ by more than " + amount(thresholds.fail, kind) +
+                       " (" + count_text(fail_allowed) + " allowed)");
+    if (m.max_error > thresholds.max_error)
+        add(fails, "largest difference " + amount(m.max_error, kind) + " at (" + std::to_string(m.max_x) + ", " +
+                       std::to_string(m.max_y) + ") is over the ceiling " + amount(thresholds.max_error, kind));
+    if (double(m.pixels_over_warn) > max_warn_allowed)
+        add(fails, std::to_string(m.pixels_over_warn) + " pixels differ by more than " + amount(thresholds.warn, kind) +
+                       " (at most " + count_text(max_warn_allowed) + " may)");
+    if (m.perceptual_fail >= 0 && double(m.perceptual_fail) > fail_allowed)
+        add(fails, std::to_string(m.perceptual_fail) + " pixels differ perceptually (" + count_text(fail_allowed) +
+                       " allowed)");
+    if (!fails.empty()) {
+        result.status = Status::fail;
+        result.reason = fails;
+    } else if (double(m.pixels_over_warn) > warn_allowed) {
+        result.status = Status::warn;
+        result.reason = std::to_string(m.pixels_over_warn) + " pixels differ by more than " +
+                        amount(thresholds.warn, kind) + " (" + count_text(warn_allowed) + " allowed before a warning)";
+    } else {
+        result.status = Status::pass;
+    }
+    return result;
+}
+
+double heat_map_scale(const Thresholds& thresholds, const Metrics& metrics) {
+    if (thresholds.fail > 0) return 2.0 * thresholds.fail;
+    return metrics.max_error > 0 ? metrics.max_error : 1.0;
+}
+
+OIIO::ImageBuf diff_heat_map(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, double scale) {
+    namespace algo = OIIO::ImageBufAlgo;
+    const OIIO::ImageBuf largest = algo::maxchan(algo::absdiff(actual, golden));
+    OIIO::ImageBuf normalized = algo::clamp(algo::mul(largest, float(1.0 / scale)), 0.0f, 1.0f);
+    normalized = algo::pow(normalized, 0.5f);
+    return algo::color_map(normalized, 0, "inferno");
+}
+
+OIIO::ImageBuf display_preview(const OIIO::ImageBuf& image, GoldenKind kind) {
+    namespace algo = OIIO::ImageBufAlgo;
+    if (kind == GoldenKind::png) return image;
+    const OIIO::ImageBuf radiance = algo::max(image, 0.0f);  // NaN and negatives as black
+    const OIIO::ImageBuf reinhard = algo::div(radiance, algo::add(radiance, 1.0f));
+    return algo::pow(reinhard, float(1.0 / 2.2));
+}
+
+}  // namespace tessera::check

@@ -1,0 +1,153 @@
+#include "cli/check_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "check/report.hpp"
+#include "check/runner.hpp"
+
+namespace tessera::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Scene i of n and the time left, on one rewritten line when stderr is a terminal; plain lines otherwise.
+class ProgressLine {
+public:
+    explicit ProgressLine(bool quiet) : quiet_(quiet), terminal_(::isatty(STDERR_FILENO) == 1) {}
+
+    void operator()(std::size_t index, std::size_t count, const check::SceneResult& r) {
+        if (quiet_) return;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double left = elapsed / double(index + 1) * double(count - index - 1);
+        if (terminal_) {
+            std::fprintf(stderr, "\r\033[K[%zu/%zu] %s %s, %.0f s left", index + 1, count,
+                         std::string(check::status_name(r.status)).c_str(), r.name.c_str(), left);
+            if (index + 1 == count) std::fputc('\n', stderr);
+        } else {
+            std::fprintf(stderr, "[%zu/%zu] %s %s (%.0f ms)\n", index + 1, count,
+                         std::string(check::status_name(r.status)).c_str(), r.name.c_str(), r.render_ms + r.compare_ms);
+        }
+        std::fflush(stderr);
+    }
+
+private:
+    bool quiet_;
+    bool terminal_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+check::Suite load_suite(const CheckCommand& cmd) {
+    if (cmd.golden_dir.empty()) {
+        if (cmd.inputs.size() != 1)
+            throw check::ManifestError("expected one manifest (check.toml), or scene files with --golden DIR");
+        if (!cmd.scene_root.empty())
+            throw check::ManifestError("--scene-root is for scene files given with --golden; a manifest has scene_root");
+        return check::load_manifest(cmd.inputs.front(), cmd.defaults);
+    }
+    check::Suite suite = check::suite_from_arguments(cmd.inputs, cmd.golden_dir, cmd.scene_root, cmd.defaults);
+    suite.new_golden_format = cmd.new_golden_format == "exr" ? check::GoldenFormat::exr : check::GoldenFormat::png;
+    return suite;
+}
+
+}  // namespace
+
+CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
+    CLI::App* check = app.add_subcommand(
+        "check", "Render scenes and compare each with its golden image; write an HTML, JUnit and JSON report");
+    check->add_option("input", cmd.inputs,
+                      "A manifest (check.toml), or with --golden scene files / glob patterns (quoted)")
+        ->required();
+    check->add_option("-g,--golden", cmd.golden_dir, "Golden image folder: <name>.png or <name>.exr per scene");
+    check->add_option("--scene-root", cmd.scene_root,
+                      "With --golden: names are scene paths below this folder (default: the deepest common folder)");
+    check->add_option("-r,--report", cmd.report_dir, "Report folder (default: the manifest's report, else check-report)");
+    check->add_option("--junit", cmd.junit_path, "JUnit XML file (default: REPORT/junit.xml)");
+    check->add_option("--json", cmd.json_path, "JSON summary file (default: REPORT/summary.json)");
+    // A flag that takes a value only as --update=missing, so that a scene file after it stays a scene.
+    check->add_flag("--update{failed}", cmd.update,
+                    "Write golden images for failing and missing scenes (--update=missing: only missing ones), "
+                    "atomically")
+        ->check(CLI::IsMember({"failed", "missing"}));
+    check->add_option("--new-golden-format", cmd.new_golden_format, "With --golden: png or exr for new golden images")
+        ->check(CLI::IsMember({"png", "exr"}));
+    check->add_flag("-q,--quiet", cmd.quiet, "No progress lines");
+
+    const auto threshold = [&](const char* flag, const char* key, const char* help) {
+        check->add_option_function<double>(
+            flag, [&cmd, key](double value) { cmd.defaults.thresholds.emplace_back(key, value); }, help);
+    };
+    threshold("--fail", "fail", "Per-channel tolerance; PNG: display value in [0,1], EXR: radiance (default 1.5/255)");
+    threshold("--fail-pixels", "fail_pixels", "Pixels allowed beyond --fail");
+    threshold("--fail-ratio", "fail_ratio", "Fraction of the image allowed beyond --fail");
+    threshold("--fail-relative", "fail_relative", "Also beyond this fraction of the mean value to count");
+    threshold("--warn", "warn", "Lower tolerance for warnings (default 0: any difference)");
+    threshold("--warn-pixels", "warn_pixels", "Pixels allowed beyond --warn before a warning");
+    threshold("--warn-ratio", "warn_ratio", "Fraction allowed beyond --warn before a warning");
+    threshold("--warn-relative", "warn_relative", "Also beyond this fraction of the mean value to count");
+    threshold("--max-error", "max_error", "Hard ceiling on the largest difference");
+    threshold("--max-warn-pixels", "max_warn_pixels", "Pixels beyond --warn that fail the scene");
+    threshold("--max-warn-ratio", "max_warn_ratio", "Fraction beyond --warn that fails the scene");
+    check->add_flag("--perceptual", cmd.defaults.perceptual, "Also apply Yee's perceptual test");
+
+    check->add_option("--width", cmd.defaults.width, "Override every scene's image width")
+        ->check(CLI::Range(1, kMaxImageDimension));
+    check->add_option("--height", cmd.defaults.height, "Override every scene's image height")
+        ->check(CLI::Range(1, kMaxImageDimension));
+    check->add_option("--msaa", cmd.defaults.msaa, "Override every scene's samples per pixel, 1 or 4")
+        ->check(CLI::IsMember({1, 4}));
+    check->add_option("--threads", cmd.settings.threads, "Worker threads (0 = one per hardware thread)")
+        ->check(CLI::Range(0, 1024));
+    check->add_option("--tile-size", cmd.settings.tile_size, "Screen tile side in pixels (power of two, 8-256)");
+    check->add_option("--isa", cmd.settings.isa, "SIMD kernels: auto, scalar, sse4, avx2, avx512");
+    return check;
+}
+
+int run_check(CheckCommand& cmd) {
+    check::Suite suite;
+    try {
+        suite = load_suite(cmd);
+    } catch (const std::exception& e) {  // ManifestError, and threshold values out of range
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return kCheckUsageError;
+    }
+    check::RunOptions options;
+    options.report_dir = !cmd.report_dir.empty() ? fs::path(cmd.report_dir)
+                         : !suite.report_dir.empty() ? suite.report_dir
+                                                     : fs::path("check-report");
+    options.settings = cmd.settings;
+    options.update = cmd.update.empty() ? check::UpdateMode::none
+                     : cmd.update == "missing" ? check::UpdateMode::missing
+                                               : check::UpdateMode::failed;
+    options.new_golden_format = suite.new_golden_format;
+    ProgressLine progress(cmd.quiet);
+    check::CheckRun run;
+    try {
+        run = check::run_check(suite.scenes, options, std::ref(progress));
+    } catch (const std::invalid_argument& e) {  // the renderer refused --isa or --tile-size: bad usage
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return kCheckUsageError;
+    }
+
+    check::write_html_report(run, options.report_dir);
+    check::write_junit_report(run, cmd.junit_path.empty() ? options.report_dir / "junit.xml" : fs::path(cmd.junit_path));
+    check::write_json_summary(run, cmd.json_path.empty() ? options.report_dir / "summary.json" : fs::path(cmd.json_path));
+
+    for (const check::SceneResult* r : check::worst_first(run)) {
+        if (r->status == check::Status::pass && r->update.empty()) continue;
+        std::fprintf(r->status == check::Status::warn ? stdout : stderr, "%s\n", check::describe(*r).c_str());
+    }
+    std::printf("check: %d passed, %d warned, %d failed, %d missing, %d errors of %zu scenes in %.1f s",
+                run.count(check::Status::pass), run.count(check::Status::warn), run.count(check::Status::fail),
+                run.count(check::Status::missing), run.count(check::Status::error), run.scenes.size(), run.seconds);
+    if (run.updated() > 0) std::printf("; %d golden images written", run.updated());
+    std::printf("\nreport: %s\n", (options.report_dir / "index.html").string().c_str());
+    return run.exit_status();
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,39 @@
+// tessera check: render a suite of scenes, compare each with its golden image,
+// write a report (HTML, JUnit, JSON) and optionally update golden images.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "check/suite.hpp"
+#include "tessera/renderer.hpp"
+
+namespace tessera::cli {
+
+struct CheckCommand {
+    std::vector<std::string> inputs;  // one manifest (check.toml), or scene files / patterns with --golden
+    std::string golden_dir;
+    std::string scene_root;
+    std::string report_dir;           // default: the manifest's `report`, else ./check-report
+    std::string junit_path;           // default: <report>/junit.xml
+    std::string json_path;            // default: <report>/summary.json
+    std::string update;               // "", "failed" (bare --update) or "missing"
+    std::string new_golden_format = "png";
+    bool quiet = false;
+    check::SuiteDefaults defaults;    // thresholds and size overrides from the command line
+    RenderSettings settings;
+};
+
+// Adds the sub-command and its options to `app`; returns it.
+CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd);
+
+// Exit status: 0 every scene passed or warned, 1 any failed, was missing or
+// could not be rendered, 2 bad usage or manifest.
+int run_check(CheckCommand& cmd);
+
+// CLI11's exit code for a parse error of `tessera check` is 2 (bad usage), as the contract says.
+inline constexpr int kCheckUsageError = 2;
+
+}  // namespace tessera::cli
