@@ -55,6 +55,12 @@ enum class DerivedTangentFrame {
     gltf,
 };
 
+// What a material's alpha does (glTF alphaMode). The reference shader is opaque.
+enum class AlphaMode : std::uint8_t {
+    opaque,  // alpha ignored
+    mask,    // a fragment whose alpha < alpha_cutoff is discarded before the depth write
+};
+
 // The reference shader's material inputs. Each map multiplies the factor
 // it belongs to (glTF's rule): a scene file that gives a map and no factor
 // gets factor 1.
@@ -77,6 +83,18 @@ struct Material {
     float normal_scale = 1.0f;  // scales the map's x and y (glTF normalTexture.scale)
     DerivedTangentFrame derived_tangent_frame = DerivedTangentFrame::learnopengl;
     TextureSlot emissive_map{};   // RGB, multiplies `emissive`
+
+    // false: back faces are culled, glTF's rule (front = counter-clockwise in
+    // window space after the object's transform; a model matrix with a
+    // negative determinant makes clockwise the front). true draws both sides,
+    // as the reference does, with the same shading (no normal flip).
+    bool double_sided = true;
+
+    // Alpha = alpha_factor × albedo map's alpha (where mapped). glTF's baseColorFactor[3] and
+    // baseColorTexture's alpha; only AlphaMode::mask uses it.
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha_factor = 1.0f;  // [0, 1]
+    float alpha_cutoff = 0.5f;  // mask: discarded below this; finite, >= 0 (glTF's default 0.5)
 
     bool has_maps() const {
         return albedo_map.present() || metallic_map.present() || roughness_map.present() || ao_map.present() ||
@@ -177,12 +195,13 @@ public:
 };
 
 // Reads and validates a TOML scene file, or a .gltf/.glb file as a whole scene
-// (src/scene/gltf_import.hpp); throws SceneError.
-Scene load_scene_file(const std::filesystem::path& path);
+// (src/scene/gltf_import.hpp); throws SceneError. gltf_camera (the CLI's
+// --camera NAME|INDEX) picks a glTF file's camera; a TOML file refuses it.
+Scene load_scene_file(const std::filesystem::path& path, const std::string& gltf_camera = "");
 // The same, taking glTF models from `models` (src/scene/model_cache.hpp): each
 // model file is imported once however many scenes loaded through it use it.
 class ModelCache;
-Scene load_scene_file(const std::filesystem::path& path, ModelCache& models);
+Scene load_scene_file(const std::filesystem::path& path, ModelCache& models, const std::string& gltf_camera = "");
 // The same from text in memory; source_name stands for the file in messages.
 Scene parse_scene(std::string_view toml_text, std::string_view source_name);
 

@@ -37,6 +37,7 @@ struct RenderCommand {
     int width = 0;                     // 0: the scene's own
     int height = 0;
     int msaa = 0;                      // 0: the scene's own
+    std::string camera;                // --camera NAME|INDEX of a glTF file; empty: its first
     bool stats = false;
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
@@ -71,7 +72,7 @@ void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage
 tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scene_path, tessera::ModelCache& models) {
     const tessera::cli::LoadCounters before = tessera::cli::read_load_counters();
     const auto start = std::chrono::steady_clock::now();
-    tessera::Scene scene = tessera::load_scene_file(scene_path, models);
+    tessera::Scene scene = tessera::load_scene_file(scene_path, models, cmd.camera);
     if (scene_path == cmd.scene_paths.back()) models.clear();
     if (cmd.stats)
         tessera::cli::print_load_stats(before, tessera::cli::read_load_counters(),
@@ -188,6 +189,9 @@ int main(int argc, char** argv) {
     add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
     add_batch_options(render_app, render);
+    render_app->add_option("--camera", render.camera,
+                           "For glTF files: the camera to render from, by name or by index in the file's cameras "
+                           "(default: the first perspective camera in the node tree)");
 
     tessera::cli::BenchCommand bench;
     CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");

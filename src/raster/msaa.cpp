@@ -27,7 +27,7 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
 }
 
 void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
-                             TileSamples& samples, RasterCounters& counters) {
+                             TileSamples& samples, RasterCounters& counters, const FragmentTest* test) {
     const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
     const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return;
@@ -48,7 +48,8 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
         std::int64_t w0 = e[0].row, w1 = e[1].row, w2 = e[2].row;
         std::size_t index = std::size_t(kMsaaSamples) * (std::size_t(y - tile.y0) * samples.side + (x_begin - tile.x0));
         for (int x = x_begin; x < x_end; ++x, index += kMsaaSamples) {
-            for (int s = 0; s < kMsaaSamples; ++s) {
+            enum { untested, kept, discarded } verdict = test ? untested : kept;
+            for (int s = 0; s < kMsaaSamples && verdict != discarded; ++s) {
                 const std::int64_t s0 = w0 + offset[0][s], s1 = w1 + offset[1][s], s2 = w2 + offset[2][s];
                 if ((s0 | s1 | s2) < 0) continue;
                 ++counters.fragments;
@@ -58,6 +59,12 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
                 const float z0 = t.depth[0] + lambda1 * (t.depth[1] - t.depth[0]) + lambda2 * (t.depth[2] - t.depth[0]);
                 const float z = z0 > 0.0f ? z0 : 0.0f;
                 if (z < samples.depth[index + s]) {
+                    if (verdict == untested) {
+                        // At the pixel centre: the unbiased edge values there, as screen_barycentrics().
+                        const float centre1 = float(w1 - e[1].bias) * inv_area, centre2 = float(w2 - e[2].bias) * inv_area;
+                        verdict = test->keep(test->context, x, y, centre1, centre2) ? kept : discarded;
+                        if (verdict == discarded) break;
+                    }
                     ++counters.depth_passed;
                     samples.depth[index + s] = z;
                     samples.triangle[index + s] = triangle_id;

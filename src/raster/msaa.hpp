@@ -50,9 +50,12 @@ struct TileFragments {
 
 // Rasterizes one triangle's samples into the part of the tile it covers:
 // int64 edge functions, the top-left rule per sample, depth test LESS per
-// sample. counters.fragments counts covered samples.
+// sample. counters.fragments counts covered samples. With a fragment test
+// (masked materials) it runs once per pixel, at the pixel centre as the
+// shader would, when the first of the triangle's samples there passes the
+// depth test; discarding drops all the triangle's samples in that pixel.
 void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
-                             TileSamples& samples, RasterCounters& counters);
+                             TileSamples& samples, RasterCounters& counters, const FragmentTest* test = nullptr);
 
 // λ1, λ2 of a set-up triangle at a point given in fixed point (image space).
 inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::int64_t px, std::int64_t py) {

@@ -96,10 +96,13 @@ BlockCoverage block_coverage(const TriangleInTile& b) {
     return full ? BlockCoverage::full : BlockCoverage::partial;
 }
 
-// The scalar loop: one pixel centre at a time, edge values in int64.
+// The scalar loop: one pixel centre at a time, edge values in int64. With
+// kTested, `test` runs on each fragment that passes the depth test.
+template <bool kTested = false>
 [[gnu::always_inline]] inline
 void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
-                      const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+                      const TileRect& tile, TileBuffers& buffers, RasterCounters& counters,
+                      const FragmentTest* test = nullptr) {
     EdgeStepper e0 = placed.e0, e1 = placed.e1, e2 = placed.e2;
     const float inv_area = t.inv_area;
     for (int y = placed.y_begin; y < placed.y_end; ++y) {
@@ -111,7 +114,7 @@ void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std
                 const float lambda1 = float(w1 - e1.bias) * inv_area;
                 const float lambda2 = float(w2 - e2.bias) * inv_area;
                 const float z = window_depth(t, lambda1, lambda2);
-                if (z < buffers.depth[index]) {
+                if (z < buffers.depth[index] && (!kTested || test->keep(test->context, x, y, lambda1, lambda2))) {
                     ++counters.depth_passed;
                     buffers.depth[index] = z;
                     buffers.triangle[index] = triangle_id;
@@ -130,6 +133,12 @@ void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std
 void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
                         RasterCounters& counters) {
     if (const auto placed = place_in_tile(t, tile)) rasterize_scalar(t, *placed, triangle_id, tile, buffers, counters);
+}
+
+void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
+                        RasterCounters& counters, const FragmentTest& test) {
+    if (const auto placed = place_in_tile(t, tile))
+        rasterize_scalar<true>(t, *placed, triangle_id, tile, buffers, counters, &test);
 }
 
 namespace {

@@ -54,6 +54,16 @@ inline Barycentrics perspective_barycentrics(const std::array<float, 3>& inv_w, 
     return {q1 * inv_sum, q2 * inv_sum};
 }
 
+// A test of each fragment that passes the depth test, before it is written:
+// the alpha test of masked materials. keep(context, x, y, λ1, λ2), with (x, y)
+// the image pixel and λ1 λ2 the screen-space barycentrics at its centre,
+// returns false to discard the fragment: the depth and triangle stay as they
+// were, so what lies behind shows.
+struct FragmentTest {
+    bool (*keep)(const void* context, int x, int y, float lambda1, float lambda2) = nullptr;
+    const void* context = nullptr;
+};
+
 // Rasterizes one triangle into the part of the tile it covers: the scalar
 // reference loop (int64 edge functions, one pixel at a time).
 void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
@@ -62,5 +72,9 @@ void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, cons
 // (all but large triangles); bit-identical buffers either way.
 void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                         TileBuffers& buffers, RasterCounters& counters);
+// The scalar loop with a fragment test (any ISA gives this same result: the
+// vector kernels are bit-identical to it, and the test runs per fragment).
+void rasterize_triangle(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers,
+                        RasterCounters& counters, const FragmentTest& test);
 
 }  // namespace tessera::raster

@@ -12,8 +12,8 @@ static_assert(sizeof(geometry::ScreenVertex) == 4 * sizeof(std::int32_t), "the s
 class SetupQueue {
 public:
     SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, AssembledTriangles& out,
-               int samples)
-        : isa_(isa), frame_(frame), viewport_(viewport), out_(out), samples_(samples) {
+               int samples, Culling culling)
+        : isa_(isa), frame_(frame), viewport_(viewport), out_(out), samples_(samples), culling_(culling) {
         in_.screen = reinterpret_cast<const std::int32_t*>(frame.screen.data());
         in_.count = 0;
         in_.width = viewport.width;
@@ -42,6 +42,8 @@ public:
                                              std::uint32_t(in_.ref[2][i])};
             if (verdicts_.verdict[i] == kSetupScalar) set_up_one(ref);
             if (verdicts_.verdict[i] != kSetupKept) continue;
+            // Kept means a non-zero area, negative where swapped: the scalar setup's culling test.
+            if (culled(culling_, verdicts_.swapped[i] ? -1 : 1)) continue;
             if (verdicts_.swapped[i]) std::swap(ref[1], ref[2]);
             RasterTriangle& t = out_.triangles.emplace_back();
             for (int k = 0; k < 3; ++k) {
@@ -58,7 +60,7 @@ public:
 private:
     void set_up_one(const std::array<std::uint32_t, 3>& ref) {
         const auto set_up = setup_triangle(
-            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref, samples_);
+            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref, samples_, culling_);
         if (set_up) out_.triangles.push_back(*set_up);
     }
 
@@ -67,6 +69,7 @@ private:
     geometry::Viewport viewport_;
     AssembledTriangles& out_;
     int samples_;
+    Culling culling_;
     SetupBatchInput in_;
     SetupBatchOutput verdicts_;
 };
@@ -76,8 +79,8 @@ private:
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples) {
-    SetupQueue queue(isa, frame, viewport, out, samples);
+                        AssembledTriangles& out, int samples, Culling culling) {
+    SetupQueue queue(isa, frame, viewport, out, samples, culling);
     geometry::ClippedPolygon polygon;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
         if (indices[t] >= vertex_count || indices[t + 1] >= vertex_count || indices[t + 2] >= vertex_count) continue;
@@ -106,7 +109,7 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
         for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0
             const auto set_up = setup_triangle(
                 viewport, {polygon.corners[0].clip_pos, polygon.corners[i].clip_pos, polygon.corners[i + 1].clip_pos},
-                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, samples);
+                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, samples, culling);
             if (set_up) out.triangles.push_back(*set_up);
         }
     }

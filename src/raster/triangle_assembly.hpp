@@ -33,10 +33,11 @@ struct AssembledTriangles {
 // triangles use the precomputed screen vertices and are set up a vector at a
 // time with the ISA's kernels (the same result as one by one); clipped ones
 // become fans. samples: 1, or 4 for 4× MSAA (set up one by one: the kernels
-// test pixel centres only).
+// test pixel centres only). culling: which windings setup drops (clipping
+// keeps a triangle's winding, so its pieces are culled alike).
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples = 1);
+                        AssembledTriangles& out, int samples = 1, Culling culling = Culling::none);
 
 }  // namespace tessera::raster

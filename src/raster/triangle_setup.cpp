@@ -57,7 +57,8 @@ bool covers_a_sample(const RasterTriangle& t) {
 }  // namespace
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
-                                             const std::array<std::uint32_t, 3>& vertex, int samples) {
+                                             const std::array<std::uint32_t, 3>& vertex, int samples,
+                                             Culling culling) {
     RasterTriangle t;
     for (int i = 0; i < 3; ++i) {
         t.x[i] = corners[i].x;
@@ -66,7 +67,7 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
         t.vertex[i] = vertex[i];
     }
     std::int64_t double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
-    if (double_area == 0) return std::nullopt;
+    if (double_area == 0 || culled(culling, double_area)) return std::nullopt;
     if (double_area < 0) {
         std::swap(t.x[1], t.x[2]);
         std::swap(t.y[1], t.y[2]);
@@ -96,11 +97,12 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
 }
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
-                                             const std::array<std::uint32_t, 3>& vertex, int samples) {
+                                             const std::array<std::uint32_t, 3>& vertex, int samples,
+                                             Culling culling) {
     return setup_triangle(viewport,
                           {geometry::to_screen(clip_pos[0], viewport), geometry::to_screen(clip_pos[1], viewport),
                            geometry::to_screen(clip_pos[2], viewport)},
-                          vertex, samples);
+                          vertex, samples, culling);
 }
 
 }  // namespace tessera::raster

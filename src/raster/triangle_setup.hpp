@@ -30,16 +30,30 @@ static_assert(kMaxImageDimension <= 32767, "pixel boxes are int16");
 using geometry::ScreenVertex;
 using geometry::Viewport;
 
+// Face culling by winding in image space (x right, y down), before corners
+// are reordered: a triangle whose double area (edge function of corner 2
+// against edge 0→1) has the named sign is dropped. GL's default front face
+// turns counter-clockwise on screen; with image y pointing down its double
+// area is negative, so culling GL's back faces drops positive areas.
+enum class Culling : std::uint8_t { none, drop_positive_area, drop_negative_area };
+
+inline bool culled(Culling culling, std::int64_t double_area) {
+    return (culling == Culling::drop_positive_area && double_area > 0) ||
+           (culling == Culling::drop_negative_area && double_area < 0);
+}
+
 // Makes a RasterTriangle of three screen vertices, or nothing when the
-// triangle has no area or covers no pixel centre. Corners 1 and 2 are swapped where needed
+// triangle has no area, is culled, or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
 // With samples = 4 (raster/msaa.hpp) the test and the pixel box are about the
 // pixels' sample positions instead of their centres.
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
-                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1);
+                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1,
+                                             Culling culling = Culling::none);
 // The same from clip positions (each inside the near plane and the guard band).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
-                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1);
+                                             const std::array<std::uint32_t, 3>& vertex, int samples = 1,
+                                             Culling culling = Culling::none);
 
 // Edge function of the edge a→b at point p, all in fixed point: twice the
 // signed area of (a, b, p), positive when p lies inside a set-up triangle.

@@ -29,6 +29,7 @@ struct alignas(128) Chunk {
     std::uint32_t object = 0;
     std::uint32_t first_triangle = 0;  // index into the mesh's triangles
     std::uint32_t triangle_count = 0;
+    bool alpha_tested = false;  // the object's material is masked: fragments take the alpha test
     raster::AssembledTriangles assembled;
     raster::ChunkBins bins;
 

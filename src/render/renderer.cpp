@@ -24,6 +24,7 @@
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
 #include "render/huge_pages.hpp"
+#include "shade/alpha_mask.hpp"
 #include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
 #include "shade/surface_gather.hpp"
@@ -112,6 +113,17 @@ void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
     size(Aov::roughness, aov.roughness, 1);
     size(Aov::metallic, aov.metallic, 1);
     size(Aov::position, aov.position, 3);
+}
+
+// Back faces of single-sided materials. Front faces are counter-clockwise in
+// GL window space, negative area in image space (raster::Culling), unless the
+// model matrix mirrors: a negative determinant swaps them (glTF's rule; a GL
+// renderer flips glFrontFace). The camera's matrices are the same for every
+// object, so the model matrix alone decides.
+raster::Culling culling_of(const Scene& scene, const Object& object) {
+    if (scene.materials[object.material].double_sided) return raster::Culling::none;
+    return glm::determinant(glm::mat3(object.model)) < 0.0f ? raster::Culling::drop_negative_area
+                                                             : raster::Culling::drop_positive_area;
 }
 
 }  // namespace
@@ -341,13 +353,14 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
         const auto t0 = Clock::now();
         render::Chunk& chunk = chunks[c];
         const Object& object = scene.objects[chunk.object];
+        chunk.alpha_tested = scene.materials[object.material].alpha_mode == AlphaMode::mask;
         const std::span<const std::uint32_t> indices(
             scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
         chunk.assembled.clear();
         render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
-                                   chunk.assembled, scene.msaa);
+                                   chunk.assembled, scene.msaa, culling_of(scene, object));
         const auto t1 = Clock::now();
         chunk.bins.build(grid, chunk.assembled.triangles);
         const auto t2 = Clock::now();
@@ -420,8 +433,8 @@ void Renderer::Frame::describe_for_textures(const raster::RasterTriangle& t, con
 }
 
 // Rasterizes every chunk's triangles for this tile, in submission order:
-// reset() clears the tile's buffers before the first one, rasterize(t, id)
-// draws one. Returns whether any fragment passed the depth test.
+// reset() clears the tile's buffers before the first one, rasterize(t, id,
+// alpha_tested) draws one (alpha_tested: its material is masked). Returns whether any fragment passed the depth test.
 template <class Reset, class Rasterize>
 bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const {
     const std::uint64_t passed_before = s.counters.depth_passed;
@@ -442,7 +455,7 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
             }
             const raster::RasterTriangle& t = chunk.assembled.triangles[bin[i]];
             const std::uint64_t passed = s.counters.depth_passed;
-            rasterize(t, (std::uint32_t(c) << render::kChunkIdShift) | bin[i]);
+            rasterize(t, (std::uint32_t(c) << render::kChunkIdShift) | bin[i], chunk.alpha_tested);
             if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
         }
     }
@@ -453,8 +466,12 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
     const bool drawn = rasterize_bins(tile, s, [&] { s.raster.reset(grid.tile_size); },
-                                      [&](const raster::RasterTriangle& t, std::uint32_t id) {
-                                          raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+                                      [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
+                                          if (!alpha_tested)
+                                              return raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+                                          const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
+                                          raster::rasterize_triangle(t, id, rect, s.raster, s.counters,
+                                                                     {shade::alpha_mask_keep, &mask});
                                       });
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,
@@ -475,8 +492,12 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
     const bool drawn = rasterize_bins(tile, s, [&] { s.samples.reset(grid.tile_size); },
-                                      [&](const raster::RasterTriangle& t, std::uint32_t id) {
-                                          raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+                                      [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
+                                          if (!alpha_tested)
+                                              return raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+                                          const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
+                                          const raster::FragmentTest test{shade::alpha_mask_keep, &mask};
+                                          raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters, &test);
                                       });
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,

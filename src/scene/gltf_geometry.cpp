@@ -248,7 +248,7 @@ int attribute(const tinygltf::Primitive& primitive, const char* name) {
 }  // namespace
 
 PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                             const std::string& source, const std::string& label) {
+                             const std::string& source, const std::string& label, int texcoord_set) {
     PrimitiveMesh result;
     const int mode = primitive.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -277,13 +277,14 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
         mesh.normals = read_vectors<3>(reader.check(n, label + " NORMAL", float_vec3));
         check_count(mesh.normals.size(), "NORMAL");
     }
-    if (const int uv = attribute(primitive, "TEXCOORD_0"); uv >= 0) {
+    const std::string texcoord = "TEXCOORD_" + std::to_string(texcoord_set);
+    if (const int uv = attribute(primitive, texcoord.c_str()); uv >= 0) {
         const AccessorRule rule{TINYGLTF_TYPE_VEC2,
                                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
                                 true};
-        mesh.uvs = read_vectors<2>(reader.check(uv, label + " TEXCOORD_0", rule));
-        check_count(mesh.uvs.size(), "TEXCOORD_0");
+        mesh.uvs = read_vectors<2>(reader.check(uv, label + " " + texcoord, rule));
+        check_count(mesh.uvs.size(), texcoord.c_str());
     }
     if (const int t = attribute(primitive, "TANGENT"); t >= 0) {
         mesh.tangents = read_vectors<4>(reader.check(t, label + " TANGENT", {TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_FLOAT}}));

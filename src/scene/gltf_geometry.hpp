@@ -21,7 +21,8 @@ struct PrimitiveMesh {
 };
 
 // `label` names the primitive in messages, e.g. "meshes[2] 'Body' primitives[0]".
+// Mesh::uvs come from TEXCOORD_<texcoord_set> (the set its material's maps read).
 PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                             const std::string& source, const std::string& label);
+                             const std::string& source, const std::string& label, int texcoord_set = 0);
 
 }  // namespace tessera::gltf

@@ -1,11 +1,12 @@
 // glTF files to GltfContent (gltf_import.hpp): tinygltf parses, this file walks
-// the node tree and converts materials, images, cameras and lights; primitives
-// are gltf_geometry.cpp's.
+// the node tree and converts images, cameras and lights; primitives are
+// gltf_geometry.cpp's, material factors and modes gltf_materials.cpp's.
 #include "scene/gltf_import.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -20,7 +21,9 @@
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_extensions.hpp"
 #include "scene/gltf_geometry.hpp"
+#include "scene/gltf_materials.hpp"
 #include "scene/scene_validation.hpp"
 #include "texture/texture.hpp"
 
@@ -175,13 +178,22 @@ public:
 
     GltfContent read() {
         auto start = std::chrono::steady_clock::now();
+        gltf::check_extensions(model_, source_, content_.warnings);
+        content_.cameras.resize(model_.cameras.size());
+        for (std::size_t c = 0; c < model_.cameras.size(); ++c)
+            content_.cameras[c].name = model_.cameras[c].name, content_.cameras[c].type = model_.cameras[c].type;
         walk_nodes();
         gltf_import_times().convert_ns += nanoseconds_since(start);
         start = std::chrono::steady_clock::now();
         decode_textures();
         gltf_import_times().images_ns += nanoseconds_since(start);
-        if (content_.camera && content_.camera->camera.far_plane == std::numeric_limits<float>::infinity())
-            content_.camera->camera.far_plane = far_plane_covering(content_.camera->camera, content_.bounds);
+        const auto finish = [&](GltfCamera& camera) {
+            if (camera.camera.far_plane == std::numeric_limits<float>::infinity())
+                camera.camera.far_plane = far_plane_covering(camera.camera, content_.bounds);
+        };
+        if (content_.camera) finish(*content_.camera);
+        for (PlacedGltfCamera& placed : content_.cameras)
+            if (placed.view) finish(*placed.view);
         return std::move(content_);
     }
 
@@ -261,6 +273,7 @@ private:
             const glm::mat4 world = pending.parent_world * local_transform(node, label);
             if (!finite(world)) fail(label + " has a world transform that is not finite");
             if (node.mesh >= 0) place_mesh(node.mesh, world, label);
+            node_name_ = node.name;
             if (node.camera >= 0) read_camera(node.camera, world, label);
             read_node_light(node, world, label);
             for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
@@ -292,11 +305,15 @@ private:
         std::vector<PlacedPrimitive> placed;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const std::string label = indexed("meshes", std::size_t(mesh_index), mesh.name) + " primitives[" + std::to_string(p) + "]";
-            gltf::PrimitiveMesh converted = gltf::read_primitive(model_, mesh.primitives[p], source_, label);
+            const gltf::UvMapping uv_mapping = uv_mapping_of(mesh.primitives[p].material);
+            gltf::PrimitiveMesh converted =
+                gltf::read_primitive(model_, mesh.primitives[p], source_, label, uv_mapping.set);
             if (!converted.is_surface) {
                 ++content_.skipped_primitives;
                 continue;
             }
+            if (uv_mapping.transformed)
+                for (glm::vec2& uv : converted.mesh.uvs) uv = glm::vec2(uv_mapping.transform * glm::vec3(uv, 1.0f));
             Bounds bounds;
             for (const glm::vec3& position : converted.mesh.positions) bounds.add(position);
             mesh_bounds_.push_back(bounds);
@@ -308,81 +325,32 @@ private:
 
     // ---- Materials and textures
 
+    // The texture coordinates a glTF material's maps read (-1: the default material, no maps).
+    gltf::UvMapping uv_mapping_of(int gltf_material) {
+        if (gltf_material < 0 || std::size_t(gltf_material) >= model_.materials.size()) return {};
+        const auto known = uv_mappings_.find(gltf_material);
+        if (known != uv_mappings_.end()) return known->second;
+        const gltf::UvMapping mapping = gltf::read_uv_mapping(model_, std::size_t(gltf_material), source_, content_.warnings);
+        uv_mappings_.emplace(gltf_material, mapping);
+        return mapping;
+    }
+
     std::uint32_t material_index(int gltf_material, const std::string& primitive_label) {
         if (gltf_material >= 0 && std::size_t(gltf_material) >= model_.materials.size())
             fail(primitive_label + " uses material " + std::to_string(gltf_material) + " but the file has " +
                  std::to_string(model_.materials.size()) + " materials");
         const auto known = converted_materials_.find(gltf_material);
         if (known != converted_materials_.end()) return known->second;
-        content_.materials.push_back(gltf_material < 0 ? default_material() : read_material(std::size_t(gltf_material)));
+        content_.materials.push_back(
+            gltf_material < 0 ? gltf::default_material()
+                              : gltf::read_material(model_, std::size_t(gltf_material), source_,
+                                                    [this](int texture, texture::ColorSpace space, const std::string& what) {
+                                                        return texture_slot(texture, space, what);
+                                                    },
+                                                    content_.warnings));
         const auto index = std::uint32_t(content_.materials.size() - 1);
         converted_materials_.emplace(gltf_material, index);
         return index;
-    }
-
-    // glTF's default material (spec §3.9.6): white, fully metallic and rough.
-    static Material default_material() {
-        Material material;
-        material.albedo = glm::vec3(1.0f);
-        material.metallic = 1.0f;
-        material.roughness = 1.0f;
-        return material;
-    }
-
-    float unit_factor(double value, const std::string& what) const {
-        if (!(value >= 0.0 && value <= 1.0)) fail(what + " is " + std::to_string(value) + ", expected a number in [0, 1]");
-        return float(value);
-    }
-
-    glm::vec3 color_factor(const std::vector<double>& values, std::size_t expected_size, const std::string& what,
-                           bool unit_range) const {
-        if (values.size() != expected_size)
-            fail(what + " has " + std::to_string(values.size()) + " numbers, expected " + std::to_string(expected_size));
-        glm::vec3 color;
-        for (int c = 0; c < 3; ++c) {
-            const double v = values[std::size_t(c)];
-            if (!(v >= 0.0 && std::isfinite(float(v))) || (unit_range && v > 1.0))
-                fail(what + " has " + std::to_string(v) + ", expected numbers in " + (unit_range ? "[0, 1]" : "[0, ∞)"));
-            color[c] = float(v);
-        }
-        return color;
-    }
-
-    Material read_material(std::size_t index) {
-        const tinygltf::Material& m = model_.materials[index];
-        const std::string label = indexed("materials", index, m.name);
-        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-        Material material;
-        material.albedo = color_factor(pbr.baseColorFactor, 4, label + " baseColorFactor", true);
-        material.metallic = unit_factor(pbr.metallicFactor, label + " metallicFactor");
-        material.roughness = unit_factor(pbr.roughnessFactor, label + " roughnessFactor");
-        material.emissive = color_factor(m.emissiveFactor, 3, label + " emissiveFactor", true);
-        if (const auto strength = m.extensions.find("KHR_materials_emissive_strength"); strength != m.extensions.end()) {
-            const tinygltf::Value& value = strength->second.Get("emissiveStrength");
-            if (value.IsNumber()) {
-                const double s = value.GetNumberAsDouble();
-                if (!(s >= 0.0 && std::isfinite(float(s) * std::max({material.emissive.x, material.emissive.y, material.emissive.z}))))
-                    fail(label + " KHR_materials_emissive_strength is " + std::to_string(s) + ", expected a finite number >= 0");
-                material.emissive *= float(s);
-            }
-        }
-        using texture::ColorSpace;
-        material.albedo_map = texture_slot(pbr.baseColorTexture.index, ColorSpace::srgb, label + " baseColorTexture");
-        material.metallic_map = texture_slot(pbr.metallicRoughnessTexture.index, ColorSpace::linear,
-                                             label + " metallicRoughnessTexture");
-        material.roughness_map = material.metallic_map;  // one texture: metallic in B, roughness in G
-        material.metallic_channel = 2;
-        material.roughness_channel = 1;
-        material.ao_map = texture_slot(m.occlusionTexture.index, ColorSpace::linear, label + " occlusionTexture");
-        material.ao_strength = float(m.occlusionTexture.strength);
-        material.normal_map = texture_slot(m.normalTexture.index, ColorSpace::linear, label + " normalTexture");
-        material.normal_scale = float(m.normalTexture.scale);
-        // Without stored tangents: glTF's frame (red along +u, green up the image).
-        material.derived_tangent_frame = DerivedTangentFrame::gltf;
-        if (!std::isfinite(material.ao_strength) || !std::isfinite(material.normal_scale))
-            fail(label + ": occlusion strength and normal scale must be finite");
-        material.emissive_map = texture_slot(m.emissiveTexture.index, ColorSpace::srgb, label + " emissiveTexture");
-        return material;
     }
 
     TextureSlot texture_slot(int texture_index, texture::ColorSpace color_space, const std::string& what) {
@@ -456,7 +424,9 @@ private:
             fail(node_label + " uses camera " + std::to_string(camera_index) + " but the file has " +
                  std::to_string(model_.cameras.size()) + " cameras");
         const tinygltf::Camera& gltf_camera = model_.cameras[std::size_t(camera_index)];
-        if (content_.camera || gltf_camera.type != "perspective") return;  // the first perspective one
+        PlacedGltfCamera& placed = content_.cameras[std::size_t(camera_index)];
+        if (placed.name.empty()) placed.name = node_name_;  // an unnamed camera goes by its node's name
+        if (placed.view || gltf_camera.type != "perspective") return;  // where a node first places it
         const std::string label = indexed("cameras", std::size_t(camera_index), gltf_camera.name);
         const tinygltf::PerspectiveCamera& p = gltf_camera.perspective;
         if (!(p.yfov > 0.0 && p.yfov < M_PI)) fail(label + " yfov is " + std::to_string(p.yfov) + ", expected radians in (0, π)");
@@ -477,7 +447,8 @@ private:
         camera.camera.near_plane = float(p.znear);
         camera.camera.far_plane = p.zfar == 0.0 ? std::numeric_limits<float>::infinity() : float(p.zfar);
         camera.aspect_ratio = float(p.aspectRatio);
-        content_.camera = camera;
+        placed.view = camera;
+        if (!content_.camera) content_.camera = camera;
     }
 
     void read_node_light(const tinygltf::Node& node, const glm::mat4& world, const std::string& node_label) {
@@ -496,7 +467,7 @@ private:
         else if (gltf_light.type == "spot") light.type = LightType::spot;
         else if (gltf_light.type == "directional") light.type = LightType::directional;
         else fail(label + " has type " + quoted(gltf_light.type) + ", expected point, spot or directional");
-        const glm::vec3 color = gltf_light.color.empty() ? glm::vec3(1.0f) : color_factor(gltf_light.color, 3, label + " color", false);
+        const glm::vec3 color = gltf_light.color.empty() ? glm::vec3(1.0f) : gltf::color_factor(gltf_light.color, 3, label + " color", false, source_);
         if (!(gltf_light.intensity >= 0.0 && std::isfinite(float(gltf_light.intensity))))
             fail(label + " intensity is " + std::to_string(gltf_light.intensity) + ", expected a finite number >= 0");
         light.color = color * float(gltf_light.intensity);
@@ -526,9 +497,11 @@ private:
     fs::path base_dir_;
     GltfReadOptions options_;
     GltfContent content_;
+    std::string node_name_;  // of the node being walked
     std::map<int, std::vector<PlacedPrimitive>> converted_meshes_;   // glTF mesh -> its primitives' meshes
     std::vector<Bounds> mesh_bounds_;                                // per content_.meshes entry, object space
     std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
+    std::map<int, gltf::UvMapping> uv_mappings_;                     // glTF material -> its maps' uvs
     std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
     std::vector<std::pair<int, texture::ColorSpace>> pending_images_;  // what content_.textures[i] decodes
 };
@@ -562,7 +535,10 @@ GltfContent import_gltf_file(const fs::path& path) {
     std::vector<std::uint8_t> bytes;
     if (!read_file_bytes(path, bytes)) fail(source, "cannot read glTF file");
     gltf_import_times().file_read_ns += nanoseconds_since(start);
-    return import_gltf(bytes, source, path.parent_path());
+    GltfContent content = import_gltf(bytes, source, path.parent_path());
+    for (const std::string& warning : content.warnings)
+        std::fprintf(stderr, "tessera: warning: %s: %s\n", source.c_str(), warning.c_str());
+    return content;
 }
 
 void append_gltf_content(Scene& scene, const GltfContent& content, const glm::mat4& placement, bool with_lights) {
@@ -588,14 +564,42 @@ void append_gltf_content(Scene& scene, const GltfContent& content, const glm::ma
     }
 }
 
-Scene make_gltf_scene(const GltfContent& content, const std::string& source) {
+namespace {
+
+// The camera --camera selects: an index into the file's cameras, or a name.
+const GltfCamera& selected_camera(const GltfContent& content, const std::string& source, const std::string& selector) {
+    std::optional<std::size_t> index;
+    if (!selector.empty() && selector.size() < 10 &&
+        std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); }))
+        index = std::size_t(std::stoul(selector));
+    for (std::size_t c = 0; c < content.cameras.size() && !index; ++c)
+        if (content.cameras[c].name == selector) index = c;
+    std::string known;
+    for (std::size_t c = 0; c < content.cameras.size(); ++c)
+        known += (c ? ", " : "") + std::to_string(c) + (content.cameras[c].name.empty() ? "" : " " + quoted(content.cameras[c].name)) +
+                 " (" + content.cameras[c].type + (content.cameras[c].view || content.cameras[c].type != "perspective" ? "" : ", not placed") + ")";
+    if (known.empty()) known = "none";
+    if (!index || *index >= content.cameras.size())
+        fail(source, "--camera " + quoted(selector) + " names no camera of the file; its cameras: " + known);
+    const PlacedGltfCamera& placed = content.cameras[*index];
+    if (placed.type != "perspective")
+        fail(source, "--camera " + quoted(selector) + " is an " + placed.type + " camera; only perspective cameras are supported");
+    if (!placed.view) fail(source, "--camera " + quoted(selector) + " is not placed by any node of the scene");
+    return *placed.view;
+}
+
+}  // namespace
+
+Scene make_gltf_scene(const GltfContent& content, const std::string& source, const std::string& camera_selector) {
     Scene scene;
     scene.source = source;
     append_gltf_content(scene, content, glm::mat4(1.0f), true);
-    if (content.camera) {
-        scene.camera = content.camera->camera;
-        if (content.camera->aspect_ratio > 0.0f)
-            scene.height = int(std::clamp(std::round(float(scene.width) / content.camera->aspect_ratio), 1.0f,
+    const GltfCamera* camera = content.camera ? &*content.camera : nullptr;
+    if (!camera_selector.empty()) camera = &selected_camera(content, source, camera_selector);
+    if (camera) {
+        scene.camera = camera->camera;
+        if (camera->aspect_ratio > 0.0f)
+            scene.height = int(std::clamp(std::round(float(scene.width) / camera->aspect_ratio), 1.0f,
                                           float(kMaxImageDimension)));
     } else {
         scene.camera = framing_camera(content.bounds, float(scene.width) / float(scene.height));

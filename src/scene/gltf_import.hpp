@@ -11,7 +11,7 @@
 // - Primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (turned into triangle
 //   lists). POINTS and LINE* are not surfaces: skipped and counted
 //   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
-//   POSITION (required), NORMAL, TEXCOORD_0 (float, or normalized u8/u16) and
+//   POSITION (required), NORMAL, TEXCOORD_n (the set the material's maps read; float, or normalized u8/u16) and
 //   TANGENT. Without NORMAL the primitive gets flat normals, as glTF requires
 //   (its vertices are split per triangle). Sparse accessors, accessors without a
 //   buffer view, morph targets and skins are not supported (skins: the mesh
@@ -20,17 +20,23 @@
 //   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
 //   emissiveFactor × emissiveTexture (sRGB), × KHR_materials_emissive_strength.
-//   Alpha is ignored: alphaMode MASK and BLEND render as OPAQUE. Other material
+//   doubleSided false (the default) culls back faces (Material::double_sided).
+//   alphaMode MASK: alpha = baseColorFactor[3] × baseColorTexture's alpha; a
+//   fragment below alphaCutoff is discarded (Material::alpha_mode). BLEND is
+//   drawn as OPAQUE, with a warning. Other material
 //   extensions (transmission, specular-glossiness, ...) are ignored. A primitive
 //   without a material gets glTF's default (white, metallic 1, roughness 1).
 // - Textures: one Texture per (image, colour space), only for images materials
 //   use, decoded in parallel (Texture::decode: PNG or JPEG, straight to RGBA8,
-//   sRGB maps kept encoded). Only TEXCOORD_0 is used (texCoord > 0 reads set 0).
+//   sRGB maps kept encoded). A material's maps read TEXCOORD_<texCoord>, transformed by
+//   KHR_texture_transform (offset, rotation, scale, texCoord), baked into the
+//   primitive's uvs; maps of one material that disagree use the first map's
+//   set and transform, with a warning (gltf_materials.hpp: UvMapping).
 //   Wrapping follows the sampler's wrapS; wrapT is ignored; MIRRORED_REPEAT
 //   wraps as REPEAT. Filters are always trilinear. glTF's UV origin (top-left)
 //   is Texture's: no flip.
 // - Cameras: the first perspective camera met in the node walk (depth first,
-//   in node order). It looks down its node's -Z with +Y up; yfov, znear, zfar
+//   in node order), or the one --camera NAME|INDEX selects. It looks down its node's -Z with +Y up; yfov, znear, zfar
 //   (absent = infinite: a far plane past the model's bounds is chosen) and
 //   aspectRatio (kept in GltfCamera; 0 when absent). Orthographic cameras are
 //   skipped.
@@ -39,6 +45,8 @@
 //   our radiance·distance² and lux (directional) as radiance, with no 4π or 683
 //   factors. Spot cone angles: radians to degrees; direction = the node's -Z.
 //   range -> Light::range (absent = 0 = unlimited).
+// - Extensions (gltf_extensions.hpp): a file requiring one not supported is
+//   refused, naming it; one only used is ignored with a warning.
 #pragma once
 
 #include <atomic>
@@ -63,6 +71,13 @@ struct GltfCamera {
     float aspect_ratio = 0.0f;  // width / height the file asks for; 0 = not given
 };
 
+// One entry of the file's `cameras` array, where the node walk first placed it.
+struct PlacedGltfCamera {
+    std::string name;                // the camera's name, or else its node's
+    std::string type;                // "perspective" or "orthographic"
+    std::optional<GltfCamera> view;  // perspective cameras placed by a node; else none
+};
+
 // What one glTF file holds, in its own index space: Object::mesh and ::material
 // and TextureSlot::texture index the vectors here.
 struct GltfContent {
@@ -71,9 +86,13 @@ struct GltfContent {
     std::vector<std::shared_ptr<const texture::Texture>> textures;
     std::vector<Object> objects;  // model = the node's world transform
     std::vector<Light> lights;    // world space
-    std::optional<GltfCamera> camera;
+    std::optional<GltfCamera> camera;     // the first perspective camera met in the node walk
+    std::vector<PlacedGltfCamera> cameras;  // one per entry of the file's `cameras`, in its order
     Bounds bounds;                // world box of every object
     int skipped_primitives = 0;   // points and lines, not drawn
+    // One line each, without the file name: what was ignored (extensions the
+    // file uses that are not supported). import_gltf_file prints them.
+    std::vector<std::string> warnings;
 };
 
 struct GltfReadOptions {
@@ -82,7 +101,8 @@ struct GltfReadOptions {
     bool read_external_files = true;
 };
 
-// Reads a .gltf or .glb file (told apart by the "glTF" magic, not the name).
+// Reads a .gltf or .glb file (told apart by the "glTF" magic, not the name),
+// printing each warning to stderr as "tessera: warning: FILE: ...".
 GltfContent import_gltf_file(const std::filesystem::path& path);
 
 // Wall time of glTF imports in this process, for `tessera render --stats`
@@ -111,6 +131,10 @@ void append_gltf_content(Scene& scene, const GltfContent& content, const glm::ma
 // A scene showing one glTF file on its own: 1280 pixels wide; the file's camera
 // (height = round(1280 / aspectRatio) when it gives one, else 720) or
 // framing_camera; the file's lights or default_light_rig. Validated.
-Scene make_gltf_scene(const GltfContent& content, const std::string& source);
+// camera_selector (the CLI's --camera): empty for the first perspective camera,
+// else an index into the file's cameras or a camera's name (a node's name for
+// an unnamed camera); a selector naming no perspective camera placed in the
+// scene is a SceneError listing the cameras there are.
+Scene make_gltf_scene(const GltfContent& content, const std::string& source, const std::string& camera_selector = "");
 
 }  // namespace tessera

@@ -50,6 +50,11 @@
 //                                   # "linear": texels are linear. Emissive maps are sRGB.
 //   normal_scale = 1.0              # scales the normal map's x and y
 //   wrap = "repeat"                 # every map of the material: "repeat" | "clamp_to_edge"
+//   double_sided = true             # false: back faces (clockwise on screen; counter-clockwise
+//                                   # under a mirroring transform) are culled, as glTF's doubleSided
+//   alpha_mode = "opaque"           # "mask": fragments whose alpha (alpha × albedo_map's alpha)
+//   alpha = 1.0                     #   is below alpha_cutoff are discarded (glTF's MASK); [0, 1]
+//   alpha_cutoff = 0.5              #   >= 0
 //
 //   [[objects]]                     # any number, including none
 //   mesh = "sphere"                 # required: "sphere" | "plane" | "cube"
@@ -475,7 +480,7 @@ private:
     Material read_material(const toml::table& table, const std::string& name) {
         check_keys(table, name, {"albedo", "metallic", "roughness", "ao", "emissive", "albedo_map", "albedo_map_encoding",
                                  "metallic_map", "roughness_map", "ao_map", "normal_map", "normal_scale",
-                                 "emissive_map", "wrap"});
+                                 "emissive_map", "wrap", "double_sided", "alpha_mode", "alpha", "alpha_cutoff"});
         Material material;
         TextureWrap wrap = TextureWrap::repeat;
         if (const toml::node* n = table.get("wrap")) {
@@ -532,6 +537,23 @@ private:
         if (const toml::node* n = table.get("normal_scale")) {
             material.normal_scale = read_float(*n, child(name, "normal_scale"));
         }
+        if (const toml::node* n = table.get("double_sided")) {
+            const auto* flag = n->as_boolean();
+            if (flag == nullptr) fail_type(*n, "a boolean", child(name, "double_sided"));
+            material.double_sided = flag->get();
+        }
+        if (const toml::node* n = table.get("alpha_mode")) {
+            const std::string text = read_string(*n, child(name, "alpha_mode"));
+            if (text == "mask") {
+                material.alpha_mode = AlphaMode::mask;
+            } else if (text != "opaque") {
+                fail_at(n->source(), "expected 'opaque' or 'mask' for '" + child(name, "alpha_mode") + "', got '" +
+                                         text + "'");
+            }
+        }
+        if (const toml::node* n = table.get("alpha")) material.alpha_factor = read_float(*n, child(name, "alpha"), kUnitInterval);
+        if (const toml::node* n = table.get("alpha_cutoff"))
+            material.alpha_cutoff = read_float(*n, child(name, "alpha_cutoff"), kNonNegative);
         return material;
     }
 
@@ -743,10 +765,14 @@ Scene parse_scene_with(std::string_view toml_text, std::string_view source_name,
     return SceneReader(source, models).read(root);
 }
 
-// models: null imports each model file here and keeps nothing.
-Scene load_scene_with(const std::filesystem::path& path, ModelCache* models) {
+// models: null imports each model file here and keeps nothing. gltf_camera (the CLI's
+// --camera NAME|INDEX) picks a glTF file's camera; a TOML file refuses it.
+Scene load_scene_with(const std::filesystem::path& path, ModelCache* models, const std::string& gltf_camera) {
     const std::string name = path.string();
-    if (is_gltf_path(path)) return make_gltf_scene(models ? *models->load(path) : import_gltf_file(path), name);
+    if (is_gltf_path(path))
+        return make_gltf_scene(models ? *models->load(path) : import_gltf_file(path), name, gltf_camera);
+    if (!gltf_camera.empty())
+        throw SceneError(name + ": --camera selects a glTF file's camera; a TOML scene has its own [camera]");
     std::error_code ignored;
     std::ifstream file(path, std::ios::binary);
     if (!file || std::filesystem::is_directory(path, ignored)) {
@@ -764,8 +790,12 @@ Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
     return parse_scene_with(toml_text, source_name, nullptr);
 }
 
-Scene load_scene_file(const std::filesystem::path& path) { return load_scene_with(path, nullptr); }
+Scene load_scene_file(const std::filesystem::path& path, const std::string& gltf_camera) {
+    return load_scene_with(path, nullptr, gltf_camera);
+}
 
-Scene load_scene_file(const std::filesystem::path& path, ModelCache& models) { return load_scene_with(path, &models); }
+Scene load_scene_file(const std::filesystem::path& path, ModelCache& models, const std::string& gltf_camera) {
+    return load_scene_with(path, &models, gltf_camera);
+}
 
 }  // namespace tessera

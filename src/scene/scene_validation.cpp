@@ -103,6 +103,9 @@ void validate_lights_and_materials(const Scene& scene) {
                      scene.textures.size(), " textures");
             }
         }
+        if (!in_unit_interval(m.alpha_factor) || !(m.alpha_cutoff >= 0.0f && std::isfinite(m.alpha_cutoff))) {
+            fail(scene, "materials[", i, "]: alpha must be in [0, 1] and the alpha cutoff finite and >= 0");
+        }
         if (m.metallic_channel < 0 || m.metallic_channel > 3 || m.roughness_channel < 0 || m.roughness_channel > 3) {
             fail(scene, "materials[", i, "]: texture channels are 0..3 (R, G, B, A)");
         }

@@ -177,6 +177,24 @@ TEST_CASE("the CLI renders a .glb on its own") {
     CHECK(fs::exists(dir / "document.png"));
 }
 
+TEST_CASE("the CLI's --camera picks a glTF file's camera by index or name, and refuses one it does not have") {
+    const fs::path dir = tessera::test::output_dir("cli_gltf_camera");
+    const fs::path model = dir / "document.gltf";
+    write_file(model, tessera::test::embedded_test_gltf());
+    const std::string out = (dir / "document.png").string();
+    for (const char* selector : {"0", "camera"}) {  // the unnamed camera goes by its node's name
+        fs::remove(out);
+        const Run run = tessera_render(dir, {model.string(), "-o", out, "--width", "32", "--camera", selector});
+        CHECK_MESSAGE(run.status == 0, run.err);
+        CHECK(fs::exists(out));
+    }
+    fs::remove(out);
+    const Run wrong = tessera_render(dir, {model.string(), "-o", out, "--camera", "7"});
+    CHECK(wrong.status == 1);
+    CHECK(contains(wrong.err, "document.gltf: --camera '7' names no camera of the file; its cameras: 0 'camera' (perspective)"));
+    CHECK_FALSE(fs::exists(out));
+}
+
 TEST_CASE("the CLI refuses bad files, arguments and sizes") {
     const fs::path dir = tessera::test::output_dir("cli_bad_arguments");
     const fs::path scene = dir / "small.toml";

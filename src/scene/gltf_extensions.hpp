@@ -1,0 +1,29 @@
+// Which glTF extensions the importer understands, and what happens to the
+// others: a file that lists an unknown one in extensionsRequired is refused,
+// naming it (drawing it without would be wrong, as the spec says); one that
+// is only used (extensionsUsed) is ignored with a one-line warning.
+// Used by gltf_import.cpp only.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+namespace tessera::gltf {
+
+// The extensions read (gltf_import.hpp says how).
+inline constexpr std::string_view kSupportedExtensions[] = {
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_texture_transform",
+};
+
+bool is_supported_extension(std::string_view name);
+
+// Throws SceneError "source: ..." naming the first required extension that is
+// not supported; appends one warning per used extension that is ignored.
+void check_extensions(const tinygltf::Model& model, const std::string& source, std::vector<std::string>& warnings);
+
+}  // namespace tessera::gltf
