@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "check/runner.hpp"
@@ -19,9 +20,20 @@ void write_html_report(const CheckRun& run, const std::filesystem::path& report_
 void write_junit_report(const CheckRun& run, const std::filesystem::path& path);
 
 // JSON summary: the run, the counts, and one self-contained record per scene
-// (runs over parts of a suite merge by concatenating "scenes" and summing "counts").
+// (the shards of a run merge with `tessera check --merge`, see check/merge.hpp).
 void write_json_summary(const CheckRun& run, const std::filesystem::path& path);
 std::string json_summary(const CheckRun& run);
+
+// A summary.json that cannot be read back: missing, not JSON, another format,
+// a field missing or of the wrong type. what() starts with the file's path.
+class SummaryError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// The inverse of write_json_summary (for merging the reports of shards).
+// Throws SummaryError.
+CheckRun read_json_summary(const std::filesystem::path& path);
 
 // One line per scene that is not a pass, for the terminal.
 std::string describe(const SceneResult& result);

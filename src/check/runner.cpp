@@ -176,6 +176,8 @@ std::pair<double, double> severity(const SceneResult& r) {
 
 }  // namespace
 
+void remove_report_images(const fs::path& report_dir) { remove_stale_report_images(report_dir / "images"); }
+
 int CheckRun::count(Status status) const {
     return int(std::count_if(scenes.begin(), scenes.end(), [&](const SceneResult& r) { return r.status == status; }));
 }
@@ -208,6 +210,7 @@ CheckRun run_check(const std::vector<SceneEntry>& scenes, const RunOptions& opti
     Renderer renderer(settings);  // one thread pool and one frame memory for every scene
 
     CheckRun run;
+    run.suite_scenes = scenes.size();  // the caller that takes a shard of a suite says so afterwards
     run.isa = renderer.isa_name();
     run.threads = renderer.threads();
     const Clock::time_point start = Clock::now();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/shard.hpp"
 #include "check/compare.hpp"
 #include "check/suite.hpp"
 #include "tessera/renderer.hpp"
@@ -50,6 +51,8 @@ struct SceneResult {
 
 struct CheckRun {
     std::vector<SceneResult> scenes;  // in the suite's order
+    batch::Shard shard;               // the part of the suite these scenes are (1/1: all of it)
+    std::size_t suite_scenes = 0;     // the scenes of the whole suite, of which `shard` took `scenes`
     double seconds = 0;
     std::string isa;
     int threads = 0;
@@ -66,6 +69,10 @@ using Progress = std::function<void(std::size_t index, std::size_t count, const 
 // load or render is an error and the others go on. Throws only when the report
 // folder cannot be made.
 CheckRun run_check(const std::vector<SceneEntry>& scenes, const RunOptions& options, const Progress& progress = {});
+
+// Removes the report images (*.expected.png, *.actual.png, *.diff.png) an
+// earlier run left under report_dir/images, and nothing else.
+void remove_report_images(const std::filesystem::path& report_dir);
 
 // Results ordered as a report lists them: errors, failures, missing, warnings,
 // passes; within each, the largest share of pixels beyond the fail tolerance first, then the
