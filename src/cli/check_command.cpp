@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "batch/shard.hpp"
+#include "check/merge.hpp"
 #include "check/report.hpp"
 #include "check/runner.hpp"
 
@@ -55,28 +57,83 @@ check::Suite load_suite(const CheckCommand& cmd) {
     return suite;
 }
 
+void print_summary(const check::CheckRun& run, const fs::path& report_dir) {
+    for (const check::SceneResult* r : check::worst_first(run)) {
+        if (r->status == check::Status::pass && r->update.empty()) continue;
+        std::fprintf(r->status == check::Status::warn ? stdout : stderr, "%s\n", check::describe(*r).c_str());
+    }
+    std::printf("check: %d passed, %d warned, %d failed, %d missing, %d errors of %zu scenes in %.1f s",
+                run.count(check::Status::pass), run.count(check::Status::warn), run.count(check::Status::fail),
+                run.count(check::Status::missing), run.count(check::Status::error), run.scenes.size(), run.seconds);
+    if (run.updated() > 0) std::printf("; %d golden images written", run.updated());
+    std::printf("\nreport: %s\n", (report_dir / "index.html").string().c_str());
+}
+
+void write_reports(const CheckCommand& cmd, const check::CheckRun& run, const fs::path& report_dir) {
+    check::write_html_report(run, report_dir);
+    check::write_junit_report(run, cmd.junit_path.empty() ? report_dir / "junit.xml" : fs::path(cmd.junit_path));
+    check::write_json_summary(run, cmd.json_path.empty() ? report_dir / "summary.json" : fs::path(cmd.json_path));
+}
+
+// --merge: the shards' reports become the report of one run.
+int run_merge(const CheckCommand& cmd) {
+    const bool render_options = !cmd.defaults.thresholds.empty() || cmd.defaults.perceptual ||
+                                cmd.defaults.width > 0 || cmd.defaults.height > 0 || cmd.defaults.msaa > 0;
+    if (render_options) {
+        std::fprintf(stderr, "tessera: error: --merge reads the shards' results; thresholds and --width/--height/"
+                             "--msaa apply when the shards run\n");
+        return kCheckUsageError;
+    }
+    const fs::path report_dir = cmd.report_dir.empty() ? fs::path("check-report") : fs::path(cmd.report_dir);
+    std::vector<fs::path> shard_dirs(cmd.inputs.begin(), cmd.inputs.end());
+    check::CheckRun run;
+    try {
+        run = check::merge_shard_reports(shard_dirs, report_dir);
+    } catch (const check::MergeError& e) {
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return kCheckUsageError;
+    }
+    write_reports(cmd, run, report_dir);
+    std::printf("merged %zu shard reports\n", shard_dirs.size());
+    print_summary(run, report_dir);
+    return run.exit_status();
+}
+
 }  // namespace
 
 CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
     CLI::App* check = app.add_subcommand(
         "check", "Render scenes and compare each with its golden image; write an HTML, JUnit and JSON report");
     check->add_option("input", cmd.inputs,
-                      "A manifest (check.toml), or with --golden scene files / glob patterns (quoted)")
+                      "A manifest (check.toml), or with --golden scene files / glob patterns (quoted), or with --merge "
+                      "the shards' report folders")
         ->required();
-    check->add_option("-g,--golden", cmd.golden_dir, "Golden image folder: <name>.png or <name>.exr per scene");
-    check->add_option("--scene-root", cmd.scene_root,
+    CLI::Option* golden = check->add_option("-g,--golden", cmd.golden_dir, "Golden image folder: <name>.png or <name>.exr per scene");
+    CLI::Option* scene_root = check->add_option("--scene-root", cmd.scene_root,
                       "With --golden: names are scene paths below this folder (default: the deepest common folder)");
     check->add_option("-r,--report", cmd.report_dir, "Report folder (default: the manifest's report, else check-report)");
     check->add_option("--junit", cmd.junit_path, "JUnit XML file (default: REPORT/junit.xml)");
     check->add_option("--json", cmd.json_path, "JSON summary file (default: REPORT/summary.json)");
     // A flag that takes a value only as --update=missing, so that a scene file after it stays a scene.
-    check->add_flag("--update{failed}", cmd.update,
+    CLI::Option* update = check->add_flag("--update{failed}", cmd.update,
                     "Write golden images for failing and missing scenes (--update=missing: only missing ones), "
                     "atomically")
         ->check(CLI::IsMember({"failed", "missing"}));
     check->add_option("--new-golden-format", cmd.new_golden_format, "With --golden: png or exr for new golden images")
         ->check(CLI::IsMember({"png", "exr"}));
     check->add_flag("-q,--quiet", cmd.quiet, "No progress lines");
+    // Sharding as `tessera render` does it (src/batch/shard.hpp); --merge puts the shards' reports together.
+    CLI::Option* shard = check->add_option(
+        "--shard", cmd.shard,
+        "Check only part I of N (1-based) of the scenes: every N-th from the I-th; default: from "
+        "SLURM_ARRAY_TASK_ID/_MIN/_COUNT/_STEP, or JOB_COMPLETION_INDEX with --shard-count");
+    CLI::Option* shard_count =
+        check->add_option("--shard-count", cmd.shard_count, "The number of parts, N, for JOB_COMPLETION_INDEX");
+    CLI::Option* merge = check->add_flag(
+        "--merge", cmd.merge,
+        "The inputs are the report folders of every shard of one run: merge their summary.json files and "
+        "images into one report (-r, --junit, --json) as one unsharded run writes it");
+    merge->excludes(shard)->excludes(shard_count)->excludes(golden)->excludes(scene_root)->excludes(update);
 
     const auto threshold = [&](const char* flag, const char* key, const char* help) {
         check->add_option_function<double>(
@@ -109,17 +166,30 @@ CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
 }
 
 int run_check(CheckCommand& cmd) {
+    if (cmd.merge) return run_merge(cmd);
     check::Suite suite;
+    batch::ShardChoice shard;
     try {
         suite = load_suite(cmd);
-    } catch (const std::exception& e) {  // ManifestError, and threshold values out of range
+        shard = batch::choose_shard(cmd.shard, cmd.shard_count, batch::process_environment());
+    } catch (const std::exception& e) {  // ManifestError, threshold values out of range, ShardError
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return kCheckUsageError;
+    }
+    const std::size_t suite_scenes = suite.scenes.size();
+    if (shard.sharded()) {
+        suite.scenes = batch::take_shard(suite.scenes, shard.shard);
+        std::printf("shard %s (from %s): %zu of %zu scenes\n", batch::shard_text(shard.shard).c_str(),
+                    shard.origin.c_str(), suite.scenes.size(), suite_scenes);
+        std::fflush(stdout);
     }
     check::RunOptions options;
     options.report_dir = !cmd.report_dir.empty() ? fs::path(cmd.report_dir)
                          : !suite.report_dir.empty() ? suite.report_dir
                                                      : fs::path("check-report");
+    // Shards of one array must not write one report: without --report each takes a folder of its own.
+    if (cmd.report_dir.empty() && shard.shard.count > 1)
+        options.report_dir /= "shard_" + std::to_string(shard.shard.index + 1);
     options.settings = cmd.settings;
     options.update = cmd.update.empty() ? check::UpdateMode::none
                      : cmd.update == "missing" ? check::UpdateMode::missing
@@ -134,19 +204,11 @@ int run_check(CheckCommand& cmd) {
         return kCheckUsageError;
     }
 
-    check::write_html_report(run, options.report_dir);
-    check::write_junit_report(run, cmd.junit_path.empty() ? options.report_dir / "junit.xml" : fs::path(cmd.junit_path));
-    check::write_json_summary(run, cmd.json_path.empty() ? options.report_dir / "summary.json" : fs::path(cmd.json_path));
+    run.shard = shard.shard;
+    run.suite_scenes = suite_scenes;
 
-    for (const check::SceneResult* r : check::worst_first(run)) {
-        if (r->status == check::Status::pass && r->update.empty()) continue;
-        std::fprintf(r->status == check::Status::warn ? stdout : stderr, "%s\n", check::describe(*r).c_str());
-    }
-    std::printf("check: %d passed, %d warned, %d failed, %d missing, %d errors of %zu scenes in %.1f s",
-                run.count(check::Status::pass), run.count(check::Status::warn), run.count(check::Status::fail),
-                run.count(check::Status::missing), run.count(check::Status::error), run.scenes.size(), run.seconds);
-    if (run.updated() > 0) std::printf("; %d golden images written", run.updated());
-    std::printf("\nreport: %s\n", (options.report_dir / "index.html").string().c_str());
+    write_reports(cmd, run, options.report_dir);
+    print_summary(run, options.report_dir);
     return run.exit_status();
 }
 

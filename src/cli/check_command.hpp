@@ -2,6 +2,7 @@
 // write a report (HTML, JUnit, JSON) and optionally update golden images.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct CheckCommand {
     std::string update;               // "", "failed" (bare --update) or "missing"
     std::string new_golden_format = "png";
     bool quiet = false;
+    std::optional<std::string> shard;  // --shard I/N; default from Slurm / Kubernetes, as `tessera render`
+    std::optional<int> shard_count;    // --shard-count N (Kubernetes Indexed Jobs)
+    bool merge = false;                // --merge: inputs are shards' report folders, merged into --report
     check::SuiteDefaults defaults;    // thresholds and size overrides from the command line
     RenderSettings settings;
 };
@@ -30,7 +34,8 @@ struct CheckCommand {
 CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd);
 
 // Exit status: 0 every scene passed or warned, 1 any failed, was missing or
-// could not be rendered, 2 bad usage or manifest.
+// could not be rendered, 2 bad usage or manifest (with --merge: shard reports
+// that are unreadable or do not make one run).
 int run_check(CheckCommand& cmd);
 
 // CLI11's exit code for a parse error of `tessera check` is 2 (bad usage), as the contract says.
