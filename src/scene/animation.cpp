@@ -62,7 +62,8 @@ glm::vec3 orbit_position(const CameraOrbit& orbit, int frame_count, double frame
 }
 
 glm::mat4 placement_matrix(const glm::vec3& translate, const glm::vec3& rotate_degrees, const glm::vec3& scale) {
-    // As scene_file.cpp's read_placement: zero angles skipped, X rotation applied first.
+    // Zero angles are skipped so that unrotated objects get exactly the reference's matrix;
+    // X rotation is applied first. scene_file.cpp places [[objects]] and [[models]] with it too.
     glm::mat4 model = glm::translate(glm::mat4(1.0f), translate);
     if (rotate_degrees.z != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.z), {0, 0, 1});
     if (rotate_degrees.y != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.y), {0, 1, 0});

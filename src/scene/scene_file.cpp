@@ -109,6 +109,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
 
+#include "scene/animation_eval.hpp"
 #include "scene/animation_file.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
@@ -678,12 +679,7 @@ private:
         if (const toml::node* n = table.get("translate")) translate = read_vec3(*n, child(name, "translate"));
         if (const toml::node* n = table.get("rotate")) rotate_degrees = read_vec3(*n, child(name, "rotate"));
         if (const toml::node* n = table.get("scale")) scale = read_scale(*n, child(name, "scale"));
-        glm::mat4 model = glm::translate(glm::mat4(1.0f), translate);
-        if (rotate_degrees.z != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.z), {0, 0, 1});
-        if (rotate_degrees.y != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.y), {0, 1, 0});
-        if (rotate_degrees.x != 0.0f) model = glm::rotate(model, glm::radians(rotate_degrees.x), {1, 0, 0});
-        if (scale != glm::vec3(1.0f)) model = glm::scale(model, scale);
-        return model;
+        return placement_matrix(translate, rotate_degrees, scale);
     }
 
     static bool finite_matrix(const glm::mat4& m) {

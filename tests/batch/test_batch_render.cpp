@@ -15,42 +15,19 @@
 #include <doctest/doctest.h>
 
 #include "batch/frames.hpp"
+#include "cli_runner.hpp"
 #include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string read_file(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+using Run = tessera::test::CliRun;
+using tessera::test::read_file;
 
 // `ENV tessera render ARGS`, output captured beside `dir`.
 Run tessera_render(const fs::path& dir, const std::vector<std::string>& args, const std::string& env = "") {
-    std::ostringstream command;
-    command << "env -u SLURM_ARRAY_TASK_ID -u JOB_COMPLETION_INDEX " << env << ' ' << quoted(TESSERA_CLI_PATH)
-            << " render";
-    for (const std::string& arg : args) command << ' ' << quoted(arg);
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    command << " >" << quoted(out.string()) << " 2>" << quoted(err.string());
-    const int raw = std::system(command.str().c_str());
-    Run run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = read_file(out);
-    run.err = read_file(err);
-    CHECK_MESSAGE(run.err.find("Sanitizer") == std::string::npos, run.err);
-    CHECK_MESSAGE(run.err.find("runtime error:") == std::string::npos, run.err);
-    return run;
+    return tessera::test::run_tessera(dir, "render", args, env);
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

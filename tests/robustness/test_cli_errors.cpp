@@ -14,6 +14,7 @@
 
 #include <doctest/doctest.h>
 
+#include "cli_runner.hpp"
 #include "robustness/bad_scenes.hpp"
 #include "scene/gltf_test_files.hpp"
 #include "test_paths.hpp"
@@ -22,48 +23,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-    int status = -1;  // the exit status, or -1 if killed by a signal
-    std::string out;
-    std::string err;
-};
-
-std::string read_file(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
+using Run = tessera::test::CliRun;
+using tessera::test::quoted;
+using tessera::test::read_file;
 
 void write_file(const fs::path& path, std::string_view text) {
     std::ofstream(path, std::ios::binary).write(text.data(), std::streamsize(text.size()));
 }
 
-// Single quotes for the shell (the test paths hold none).
-std::string quoted(const std::string& s) {
-    std::string text(1, '\'');
-    text += s;
-    text += '\'';
-    return text;
-}
-
 // Runs `tessera render ARGS` with stdout and stderr captured in files beside `dir`.
 Run tessera_render(const fs::path& dir, const std::vector<std::string>& args) {
-    std::ostringstream command;
-    command << quoted(TESSERA_CLI_PATH) << " render";
-    for (const std::string& arg : args) command << ' ' << quoted(arg);
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    command << " >" << quoted(out.string()) << " 2>" << quoted(err.string());
-    const int raw = std::system(command.str().c_str());
-    Run run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = read_file(out);
-    run.err = read_file(err);
-    // In a sanitizer build the binary is instrumented too: a report is a failure
-    // even when the exit status looks like an ordinary error.
-    CHECK_MESSAGE(run.err.find("Sanitizer") == std::string::npos, run.err);
-    CHECK_MESSAGE(run.err.find("runtime error:") == std::string::npos, run.err);
-    return run;
+    return tessera::test::run_tessera(dir, "render", args);
 }
 
 // A quick valid scene: a small image of one lit sphere.
