@@ -33,9 +33,13 @@ if ! command -v mmdebstrap >/dev/null; then
 fi
 # The new roots use this machine's Debian sources; an update that cannot fetch them means
 # no registry, so nothing below could work.
-sources=/etc/apt/sources.list.d/debian.sources
-[ -f "$sources" ] || sources=/etc/apt/sources.list
-[ -f "$sources" ] || refuse "no Debian apt sources on this machine ($sources)"
+# Every enabled sources file (deb822 .sources or one-line .list; mmdebstrap writes its
+# roots' as sources.list.d/0000debian.sources), each given to mmdebstrap as a mirror.
+sources=()
+for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.sources /etc/apt/sources.list.d/*.list; do
+  [ -s "$f" ] && grep -qE '^[[:space:]]*(deb[[:space:]]|URIs:)' "$f" && sources+=("$f")
+done
+[ ${#sources[@]} -gt 0 ] || refuse "no apt sources on this machine (/etc/apt/sources.list, /etc/apt/sources.list.d/)"
 if ! update_errors="$(timeout 120 apt-get update -qq --error-on=any 2>&1)"; then
   refuse "no network to the Debian package registry: apt-get update failed: $(echo "$update_errors" | grep -m1 -E '^(E|W|Err):' || echo "timed out")"
 fi
@@ -77,7 +81,7 @@ if [ -f "$tarball" ] && [ -n "$(find "$tarball" -mtime -"$max_age_days")" ]; the
   echo "== reusing the cached Debian 12 root $tarball"
 else
   echo "== building a minimal Debian 12 root with mmdebstrap ($(date +%T))"
-  mmdebstrap --quiet --variant=apt --include=ca-certificates,git bookworm "$tarball.part" "$sources"
+  mmdebstrap --quiet --variant=apt --include=ca-certificates,git bookworm "$tarball.part" "${sources[@]}"
   mv "$tarball.part" "$tarball"
 fi
 
