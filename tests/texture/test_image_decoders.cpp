@@ -11,6 +11,7 @@
 #include <fstream>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -311,5 +312,49 @@ TEST_CASE("Damaged PNG and JPEG data is refused with the decoder's reason") {
         FAIL("a JPEG cut in its header decoded");
     } catch (const ImageDecodeError& e) {
         CHECK(e.header());
+    }
+}
+
+TEST_CASE("Other formats load through the OpenImageIO module with OpenImageIO's texels") {
+    // A TGA with alpha and a 16-bit TIFF, written by OpenImageIO.
+    std::mt19937 rng(11);
+    for (const auto& [name, channels, format] :
+         {std::tuple{"module.tga", 4, OIIO::TypeDesc::UINT8}, std::tuple{"module.tif", 3, OIIO::TypeDesc::UINT16}}) {
+        const std::filesystem::path path = decoder_dir() / name;
+        const int width = 37, height = 23;
+        std::vector<float> pixels(std::size_t(width) * height * channels);
+        for (float& p : pixels) p = float(rng() % 1000) / 999.0f;
+        auto out = OIIO::ImageOutput::create(path.string());
+        REQUIRE(out);
+        REQUIRE(out->open(path.string(), OIIO::ImageSpec(width, height, channels, format)));
+        REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        REQUIRE(out->close());
+
+        INFO(name);
+        const std::vector<std::uint32_t> expected = decode_with_oiio(path, true);
+        const Texture texture = Texture::load(path, ColorSpace::linear);
+        REQUIRE(texture.width() == width);
+        REQUIRE(texture.height() == height);
+        std::size_t differing = 0;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const auto b = texture.texel_bytes(0, x, y);
+                const std::uint32_t word = b[0] | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+                differing += word != expected[std::size_t(y) * width + x];
+            }
+        CHECK(differing == 0);
+    }
+}
+
+TEST_CASE("A .png or .jpg file that is neither is refused without OpenImageIO, naming the file") {
+    const std::filesystem::path path = decoder_dir() / "not_really.jpg";
+    std::ofstream(path) << "GIF89a, not a JPEG";
+    try {
+        (void)Texture::load(path, ColorSpace::srgb);
+        FAIL("a text file loaded as a texture");
+    } catch (const TextureError& e) {
+        const std::string message = e.what();
+        CHECK(message.find("not_really.jpg") != std::string::npos);
+        CHECK(message.find("neither a PNG nor a JPEG") != std::string::npos);
     }
 }
