@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include <png.h>
+#include <zlib.h>
 
 namespace tessera {
 
@@ -30,9 +31,13 @@ bool write_rows(png_structp png, png_infop info, std::FILE* file, const std::uin
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     // The display image is sRGB-encoded (resolve.hpp): say so.
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-    // zlib's level 6 with libpng's adaptive filters: about OpenImageIO's file
-    // size; the fastest levels double it for little time saved.
-    png_set_compression_level(png, 6);
+    // The Paeth filter on every row and zlib's run-length strategy: 3.5-4x
+    // faster than zlib's level 6 with adaptive filters (OpenImageIO's default),
+    // for files 2% smaller to 23% larger on our golden images. The encode runs
+    // on one thread after the frame, so it is wall time every render pays.
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
+    png_set_compression_strategy(png, Z_RLE);
+    png_set_compression_level(png, 1);
     png_write_info(png, info);
     for (int y = 0; y < height; ++y)
         png_write_row(png, const_cast<png_bytep>(rgb + std::size_t(y) * std::size_t(width) * 3));
