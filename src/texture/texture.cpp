@@ -139,9 +139,17 @@ const std::array<float, 256>& unorm8_table() {
     return table;
 }
 
-std::uint8_t encode_unorm8(float linear) {
-    return static_cast<std::uint8_t>(std::floor(clamp_nan_low(linear, 0.0f, 1.0f) * 255.0f + 0.5f));
+namespace {
+
+// round(255·x) for x clamped to [0, 1]: floor(255·x + ½), and floor is the
+// integer conversion for these non-negative values (no libm call).
+inline std::uint8_t unorm8_from_linear(float linear) {
+    return static_cast<std::uint8_t>(static_cast<int>(clamp_nan_low(linear, 0.0f, 1.0f) * 255.0f + 0.5f));
 }
+
+}  // namespace
+
+std::uint8_t encode_unorm8(float linear) { return unorm8_from_linear(linear); }
 
 namespace {
 
@@ -177,12 +185,14 @@ struct SrgbEncoder {
     }
 };
 
+const SrgbEncoder& srgb_encoder() {
+    static const SrgbEncoder encoder;
+    return encoder;
+}
+
 }  // namespace
 
-std::uint8_t encode_srgb8(float linear) {
-    static const SrgbEncoder encoder;
-    return encoder.encode(linear);
-}
+std::uint8_t encode_srgb8(float linear) { return srgb_encoder().encode(linear); }
 
 TextureBuildTimes& build_times() {
     static TextureBuildTimes times;
@@ -446,7 +456,10 @@ void Texture::build_mip_chain() {
     const auto start = std::chrono::steady_clock::now();
     const float* const rgb_decode = (color_space_ == ColorSpace::srgb ? srgb_decode_table() : unorm8_table()).data();
     const float* const alpha_decode = unorm8_table().data();
-    const auto rgb_encode = color_space_ == ColorSpace::srgb ? encode_srgb8 : encode_unorm8;
+    // One copy of the filter per colour space, so that the encoder is inlined
+    // (it was an indirect call per channel and texel).
+    const SrgbEncoder& srgb = srgb_encoder();
+    const auto build_levels = [&](auto rgb_encode) {
     for (std::size_t l = 1; l < levels_.size(); ++l) {
         const MipLevel parent = levels_[l - 1];
         const MipLevel child = levels_[l];
@@ -456,7 +469,7 @@ void Texture::build_mip_chain() {
         std::uint32_t* const child_texels = texels_.get() + child.offset;
         const auto encode = [&](float r, float g, float b, float a) {
             return std::uint32_t(rgb_encode(r)) | std::uint32_t(rgb_encode(g)) << 8 |
-                   std::uint32_t(rgb_encode(b)) << 16 | std::uint32_t(encode_unorm8(a)) << 24;
+                   std::uint32_t(rgb_encode(b)) << 16 | std::uint32_t(unorm8_from_linear(a)) << 24;
         };
         // Both sides even: every texel is the plain 2×2 average. The same floats
         // as the general taps give (weights ¼ = ½·½, summed in the same order;
@@ -516,6 +529,9 @@ void Texture::build_mip_chain() {
             build_rows(0, child.height);
         }
     }
+    };
+    if (color_space_ == ColorSpace::srgb) build_levels([&srgb](float x) { return srgb.encode(x); });
+    else build_levels([](float x) { return unorm8_from_linear(x); });
     build_times().mips_ns += nanoseconds_since(start);
     build_times().textures += 1;
     build_times().bytes += static_cast<std::int64_t>(memory_bytes());
