@@ -174,9 +174,16 @@ void decode_png(std::span<const std::uint8_t> bytes, PngAlpha alpha, const Level
     if (!read_png_header(s.png, s.info, &header)) throw ImageDecodeError(true, stream.message);
 
     const int width = int(header.width), height = int(header.height);
+    const std::size_t row_bytes = png_get_rowbytes(s.png, s.info);
+    // The transforms promise RGBA8 rows for 8-bit data, 1-4 channels of 16 bits otherwise.
+    const std::size_t sample_bytes = header.bit_depth == 16 ? 2 : 1;
+    if ((header.bit_depth != 8 && header.bit_depth != 16) || (header.bit_depth == 8 && header.channels != 4) ||
+        header.channels < 1 || header.channels > 4 ||
+        row_bytes != std::size_t(header.width) * std::size_t(header.channels) * sample_bytes)
+        throw ImageDecodeError(true, "unsupported PNG layout (" + std::to_string(header.channels) + " channels of " +
+                                         std::to_string(header.bit_depth) + " bits)");
     std::uint32_t* const level0 = allocate(width, height);
     const bool associate = alpha == PngAlpha::associated && header.has_alpha;
-    const std::size_t row_bytes = png_get_rowbytes(s.png, s.info);
 
     if (header.bit_depth == 8) {
         // RGBA8 straight into level 0 (the transforms made the rows that shape).

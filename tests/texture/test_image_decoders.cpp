@@ -358,3 +358,24 @@ TEST_CASE("A .png or .jpg file that is neither is refused without OpenImageIO, n
         CHECK(message.find("neither a PNG nor a JPEG") != std::string::npos);
     }
 }
+
+TEST_CASE("A damaged file in a format for the module is refused with OpenImageIO's reason and the file's name") {
+    const std::filesystem::path path = decoder_dir() / "damaged.tga";
+    {
+        // A TGA header promising 64x64 RGB, then 10 bytes of pixels.
+        const unsigned char header[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 64, 0, 64, 0, 24, 0};
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(header), sizeof header);
+        out.write("0123456789", 10);
+    }
+    try {
+        (void)Texture::load(path, ColorSpace::linear);
+        FAIL("a truncated TGA loaded");
+    } catch (const TextureError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK(message.find("damaged.tga") != std::string::npos);
+        CHECK((message.find("truncated or corrupt image data: ") != std::string::npos ||
+               message.find("cannot read image: ") != std::string::npos));
+    }
+}
