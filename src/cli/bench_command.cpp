@@ -40,6 +40,8 @@ int run_bench(const BenchCommand& cmd) {
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;
+    if (cmd.cull_back_faces)
+        for (Material& material : scene.materials) material.double_sided = false;
     RenderSettings settings = cmd.settings;
     settings.keep_radiance = cmd.keep_radiance;
     const bool profiling = !cmd.trace_path.empty() || !cmd.heatmap_path.empty();

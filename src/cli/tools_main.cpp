@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
     bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
     tessera::cli::add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
+    bench_app->add_flag("--cull-back-faces", bench.cull_back_faces,
+                        "Draw every material single-sided (back faces culled), as double_sided = false");
     bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
     bench_app->add_option("--trace", bench.trace_path,
                           "Write the timed frames as a Chrome trace-event JSON file (Perfetto, chrome://tracing): "
