@@ -8,6 +8,8 @@ packages=(
   g++ make cmake pkg-config
   libglm-dev libtbb-dev libopenimageio-dev libxsimd-dev libtomlplusplus-dev libcli11-dev
   libtinygltf-dev nlohmann-json3-dev
+  # Compressed glTF geometry: KHR_draco_mesh_compression and EXT_meshopt_compression.
+  libdraco-dev libmeshoptimizer-dev
 )
 if [ "${1:-all}" != render ]; then
   packages+=(
