@@ -2,13 +2,17 @@
 // sparse accessors and accessors without a buffer view, EXT_meshopt_compression
 // and KHR_draco_mesh_compression. Each test makes its small file with
 // gltf_compressed_files.hpp (the compressed ones with the same libraries the
-// importer decodes with) and compares what is read with the plain file.
+// importer decodes with) and compares what is read with the plain file; the
+// last reads a filtered stream through the accessor reader directly.
 #include <algorithm>
 #include <array>
 
 #include <doctest/doctest.h>
+#include <tiny_gltf.h>
 
+#include "scene/gltf_accessors.hpp"
 #include "scene/gltf_compressed_files.hpp"
+#include "scene/gltf_compression.hpp"
 #include "scene/gltf_import.hpp"
 
 using namespace tessera;
@@ -307,4 +311,50 @@ TEST_CASE("KHR_draco_mesh_compression: the same triangles as the plain file, wit
         CHECK(glm::length(mesh.uvs[v] - plain.uvs[nearest]) <= 1.0f / 4096.0f);            // 12 bits over [0, 1]
         CHECK(mesh.tangents[v] == plain.tangents[nearest]);                                  // not quantized
     }
+}
+
+TEST_CASE("EXT_meshopt_compression QUATERNION filter and plain integer vectors, read through the accessor reader") {
+    // Five unit quaternions (animation rotations as gltfpack stores them), and JOINTS-style u16 VEC4s.
+    std::vector<glm::vec4> rotations;
+    for (int i = 0; i < 5; ++i) {
+        const float angle = 0.4f * float(i) + 0.1f;
+        rotations.push_back(glm::normalize(glm::vec4(std::sin(angle) * glm::normalize(glm::vec3(1, 2, 3 - i)), std::cos(angle))));
+    }
+    std::vector<std::int16_t> filtered(rotations.size() * 4);
+    meshopt_encodeFilterQuat(filtered.data(), rotations.size(), 8, 12, &rotations[0].x);
+    std::vector<unsigned char> encoded(meshopt_encodeVertexBufferBound(rotations.size(), 8));
+    encoded.resize(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), filtered.data(), rotations.size(), 8));
+    test::BinaryBuffer bin;
+    const std::size_t joints_offset = bin.add(std::vector<std::uint16_t>{1, 2, 3, 4, 500, 6, 7, 8});
+    const std::size_t encoded_offset = bin.add(encoded.data(), encoded.size());
+    const std::string json = test::one_primitive_gltf(
+        R"("extensionsUsed": ["EXT_meshopt_compression"], "extensionsRequired": ["EXT_meshopt_compression"],)",
+        R"({"byteLength": )" + std::to_string(bin.bytes.size()) + R"(}, {"byteLength": 40})",
+        test::view_json(1, 0, 40, 8,
+                        R"({"buffer": 0, "byteOffset": )" + std::to_string(encoded_offset) + R"(, "byteLength": )" +
+                            std::to_string(encoded.size()) + R"(, "byteStride": 8, "count": 5, "mode": "ATTRIBUTES", "filter": "QUATERNION"})") +
+            ", " + test::view_json(0, joints_offset, 16),
+        test::accessor_json(0, 5122, 5, "VEC4", true) + ", " + test::accessor_json(1, 5123, 2, "VEC4"),
+        R"({"attributes": {"POSITION": 0}})");
+    const std::vector<std::uint8_t> glb = test::make_glb(json, bin.bytes);
+
+    const gltf::ParseInput input = gltf::prepare_for_tinygltf(glb, true);
+    REQUIRE(input.fallback_buffers == std::vector<int>{1});
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    REQUIRE(loader.LoadBinaryFromMemory(&model, &err, &warn, input.bytes.data(), unsigned(input.bytes.size()), ""));
+    gltf::decode_compressed_geometry(model, "rotations.glb", input.fallback_buffers);
+    const std::string source = "rotations.glb";
+    const gltf::AccessorReader reader(model, source);
+    const std::vector<glm::vec4> read = gltf::read_vectors<4>(
+        reader.check(0, "rotations", {TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_SHORT}, true}));
+    REQUIRE(read.size() == rotations.size());
+    for (std::size_t i = 0; i < read.size(); ++i) {
+        CAPTURE(i);
+        CHECK(std::abs(glm::dot(read[i], rotations[i])) > 0.9999f);  // 12 bits per component; q and -q are one rotation
+    }
+    const gltf::AccessorRule joints{TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                    false, true};
+    CHECK(gltf::read_uints(reader.check(1, "joints", joints)) == std::vector<std::uint32_t>{1, 2, 3, 4, 500, 6, 7, 8});
 }
