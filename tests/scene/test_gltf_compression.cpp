@@ -358,3 +358,57 @@ TEST_CASE("EXT_meshopt_compression QUATERNION filter and plain integer vectors, 
                                     false, true};
     CHECK(gltf::read_uints(reader.check(1, "joints", joints)) == std::vector<std::uint32_t>{1, 2, 3, 4, 500, 6, 7, 8});
 }
+
+namespace {
+
+struct MeshSummary {
+    std::size_t triangles = 0;
+    double area = 0.0;  // world space
+    Bounds bounds;
+};
+
+MeshSummary summary(const GltfContent& content) {
+    MeshSummary s;
+    for (const Object& object : content.objects) {
+        const Mesh& mesh = content.meshes[object.mesh];
+        s.triangles += mesh.indices.size() / 3;
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            glm::vec3 p[3];
+            for (int c = 0; c < 3; ++c) p[c] = glm::vec3(object.model * glm::vec4(mesh.positions[mesh.indices[t + std::size_t(c)]], 1.0f));
+            s.area += 0.5 * double(glm::length(glm::cross(p[1] - p[0], p[2] - p[0])));
+        }
+    }
+    s.bounds = content.bounds;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("real exporters' compressed files: BoomBox's geometry from gltfpack -c (meshopt) and gltf-pipeline -d (Draco)") {
+    const std::filesystem::path models = std::filesystem::path(TESSERA_SOURCE_DIR) / "tests" / "scene" / "models";
+    const std::filesystem::path original = std::filesystem::path(TESSERA_SOURCE_DIR) / ".." / "shared" / "assets" / "gltf" /
+                                           "BoomBox" / "BoomBox.gltf";
+    // gltfpack drops the uvs and tangents of a material without textures (and merges the
+    // vertices that then coincide); gltf-pipeline keeps every attribute.
+    for (const std::string name : {"BoomBox_geometry_meshopt.glb", "BoomBox_geometry_draco.glb"}) {
+        CAPTURE(name);
+        const GltfContent content = import_gltf_file(models / name);
+        CHECK(content.warnings.empty());
+        REQUIRE(content.meshes.size() == 1);
+        const Mesh& mesh = content.meshes[0];
+        CHECK(mesh.normals.size() == mesh.positions.size());
+        if (name.find("draco") != std::string::npos) {
+            CHECK(mesh.positions.size() == 3575);
+            CHECK(mesh.tangents.size() == mesh.positions.size());
+            CHECK(mesh.uvs.size() == mesh.positions.size());
+        }
+        const MeshSummary got = summary(content);
+        CHECK(got.triangles == 6036);
+        if (!std::filesystem::exists(original)) continue;  // the shared sample models are optional
+        const MeshSummary want = summary(import_gltf_file(original));
+        const float size = glm::length(want.bounds.max - want.bounds.min);
+        CHECK(glm::length(got.bounds.min - want.bounds.min) < 0.002f * size);  // quantization, not lost geometry
+        CHECK(glm::length(got.bounds.max - want.bounds.max) < 0.002f * size);
+        CHECK(got.area == doctest::Approx(want.area).epsilon(0.005));
+    }
+}
