@@ -105,7 +105,8 @@ ParseInput prepare_for_tinygltf(std::span<const std::uint8_t> bytes, bool binary
     const bool replaced = meshopt && replace_fallback_buffers(json, binary, input.fallback_buffers);
     const bool dropped = draco && drop_draco_indices(json);
     if (!replaced && !dropped) return input;
-    std::string patched = json.dump();
+    // Strings are kept byte for byte where valid; dump() must not throw on the rest.
+    std::string patched = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     if (!binary) {
         input.bytes.assign(patched.begin(), patched.end());
         return input;
