@@ -11,10 +11,11 @@
 // - Primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (turned into triangle
 //   lists). POINTS and LINE* are not surfaces: skipped and counted
 //   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
-//   POSITION (required), NORMAL, TEXCOORD_n (the set the material's maps read; float, or normalized u8/u16) and
-//   TANGENT, all float; with KHR_mesh_quantization in extensionsUsed also the
-//   extension's types (positions and uvs: 8/16-bit integers, normalized or not;
-//   normals and tangents: normalized i8/i16). Without NORMAL the primitive gets
+//   POSITION (required), NORMAL and TANGENT as float, TEXCOORD_n (the set the
+//   material's maps read) as float or normalized u8/u16; with
+//   KHR_mesh_quantization in extensionsUsed also the extension's types
+//   (positions and uvs: 8/16-bit integers, normalized or not; normals and
+//   tangents: normalized i8/i16). Without NORMAL the primitive gets
 //   flat normals, as glTF requires (its vertices are split per triangle).
 //   Accessors (gltf_accessors.hpp): sparse ones get their substitutions, ones
 //   without a buffer view are zeros (at most kMaxImplicitElements elements).
