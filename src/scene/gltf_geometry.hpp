@@ -1,6 +1,6 @@
 // glTF mesh primitives to tessera Meshes, with every accessor checked against
 // its buffer view and buffer before a byte is read (gltf_import.hpp says what
-// is supported). Used by gltf_import.cpp only.
+// is supported). Used by gltf_import.cpp; fail() by the importer's other files too.
 #pragma once
 
 #include <string>

@@ -21,6 +21,7 @@
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_compression.hpp"
 #include "scene/gltf_extensions.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_materials.hpp"
@@ -143,6 +144,11 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
     loader.SetFsCallbacks({file_exists, expand_nothing, read_whole_file, write_nothing, &context});
     std::string err, warn;
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    // Meshopt fallback buffers and Draco indices, which tinygltf would refuse (gltf_compression.hpp).
+    const gltf::ParseInput input = gltf::prepare_for_tinygltf(bytes, binary);
+    if (!input.bytes.empty()) bytes = input.bytes;
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        fail(source, "file of " + std::to_string(bytes.size()) + " bytes is larger than glTF's 4 GB limit");
     bool loaded = false;
     try {
         loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
@@ -159,6 +165,7 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
                                                    : " (external files are not read here)";
         fail(source, message);
     }
+    gltf::decode_compressed_geometry(model, source, input.fallback_buffers);
     return model;
 }
 

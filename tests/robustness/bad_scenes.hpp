@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/gltf_compressed_files.hpp"
 #include "scene/gltf_test_files.hpp"
 
 namespace tessera::test {
@@ -235,9 +236,9 @@ inline std::vector<BadGltf> bad_gltf_files() {
          {"@: KHR_lights_punctual lights[1] has type 'area', expected point, spot or directional"}},
         {"gltf_required_extension", ".gltf",
          replaced(good, R"("extensionsUsed": ["KHR_lights_punctual"])",
-                  R"("extensionsUsed": ["KHR_lights_punctual", "KHR_draco_mesh_compression"], )"
-                  R"("extensionsRequired": ["KHR_draco_mesh_compression"])"),
-         {"@: the file requires the extension 'KHR_draco_mesh_compression', which is not supported"}},
+                  R"("extensionsUsed": ["KHR_lights_punctual", "KHR_texture_basisu"], )"
+                  R"("extensionsRequired": ["KHR_texture_basisu"])"),
+         {"@: the file requires the extension 'KHR_texture_basisu', which is not supported"}},
         {"gltf_alpha_cutoff_negative", ".gltf",
          replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "MASK", "alphaCutoff": -1,)"),
          {"@: materials[0] 'painted' alphaCutoff is -1.000000, expected a finite number >= 0"}},
@@ -253,6 +254,79 @@ inline std::vector<BadGltf> bad_gltf_files() {
          {"@: materials[0] 'painted' baseColorTexture uses TEXCOORD_4000000; expected a set from 0 to 9"}},
         {"gltf_alpha_mode_unknown", ".gltf", replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "CLIP",)"),
          {"@: materials[0] 'painted' alphaMode is 'CLIP', expected OPAQUE, MASK or BLEND"}},
+        // Quantized, sparse and compressed geometry (gltf_compressed_files.hpp).
+        {"gltf_quantized_normal_unsigned", ".gltf",
+         replaced(replaced(good, R"("extensionsUsed": ["KHR_lights_punctual"])",
+                           R"("extensionsUsed": ["KHR_lights_punctual", "KHR_mesh_quantization"])"),
+                  R"({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"})",
+                  R"({"bufferView": 1, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC3"})"),
+         {"@: meshes[0] 'parts' primitives[0] NORMAL (accessor 1) has components of UNSIGNED_BYTE, expected FLOAT, BYTE, SHORT"}},
+        {"gltf_sparse_index_out_of_range", ".gltf",
+         // The strip's u8 indices 0 1 read as one u16: 256.
+         replaced(good, R"("min": [0, 0, 0], "max": [1, 1, 0])",
+                  R"("min": [0, 0, 0], "max": [1, 1, 0], "sparse": {"count": 1, )"
+                  R"("indices": {"bufferView": 5, "componentType": 5123}, "values": {"bufferView": 4}})"),
+         {"@: meshes[0] 'parts' primitives[0] POSITION (accessor 0) sparse index 256 at [0] is out of range; the accessor has 3 elements"}},
+        {"gltf_sparse_values_past_view", ".gltf",
+         replaced(good, R"("min": [0, 0, 0], "max": [1, 1, 0])",
+                  R"("min": [0, 0, 0], "max": [1, 1, 0], "sparse": {"count": 2, )"
+                  R"("indices": {"bufferView": 5, "componentType": 5121}, "values": {"bufferView": 4, "byteOffset": 64}})"),
+         {"@: meshes[0] 'parts' primitives[0] POSITION (accessor 0) sparse values is out of range: 2 values of 12 bytes"}},
+        {"gltf_implicit_zeros_huge", ".gltf",
+         replaced(good, R"({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"})",
+                  R"({"componentType": 5126, "count": 3000000000, "type": "VEC2"})"),
+         {"@: meshes[0] 'parts' primitives[0] TEXCOORD_0 (accessor 2) has no bufferView and 3000000000 elements"}},
+        {"gltf_draco_does_not_decode", ".glb",
+         [] {
+             const GridMesh grid = grid_mesh(2);
+             DracoGrid draco = draco_grid(grid);
+             for (std::size_t i = 0; i < draco.bytes.size(); ++i) draco.bytes[i] = std::uint8_t(0xA5 ^ i);
+             const GltfParts parts = draco_grid_parts(draco, grid.positions.size(), grid.indices.size());
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression: the Draco data in bufferView 0 (",
+          " bytes) does not decode: "}},
+        {"gltf_draco_unknown_attribute_id", ".glb",
+         [] {
+             const GridMesh grid = grid_mesh(2);
+             DracoGrid draco = draco_grid(grid);
+             draco.normal_id = 9;
+             const GltfParts parts = draco_grid_parts(draco, grid.positions.size(), grid.indices.size());
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression attribute NORMAL: the Draco mesh has no attribute with id 9"}},
+        {"gltf_meshopt_stream_too_short", ".glb",
+         [] {
+             // The positions' stream (81 elements of 12 bytes) cut to 10 bytes; its real length becomes an unknown key.
+             GltfParts parts = meshopt_grid_parts(grid_mesh(8));
+             parts.json = replaced(parts.json, R"({"buffer": 0, "byteOffset": 0, "byteLength": )",
+                                   R"({"buffer": 0, "byteOffset": 0, "byteLength": 10, "was": )");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 0 EXT_meshopt_compression is too short: 10 bytes cannot hold 81 elements of 12 bytes"}},
+        {"gltf_meshopt_stream_does_not_decode", ".glb",
+         [] {
+             GltfParts parts = meshopt_grid_parts(grid_mesh(8));
+             parts.json = replaced(parts.json, R"({"buffer": 0, "byteOffset": 0, "byteLength": )",
+                                   R"({"buffer": 0, "byteOffset": 0, "byteLength": 40, "was": )");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 0 EXT_meshopt_compression: the ATTRIBUTES data (40 bytes) does not decode to 81 elements of 12 bytes"}},
+        {"gltf_meshopt_unknown_mode", ".glb",
+         [] {
+             GltfParts parts = meshopt_grid_parts(grid_mesh(2));
+             parts.json = replaced(parts.json, R"("mode": "TRIANGLES")", R"("mode": "STRIPS")");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 4 EXT_meshopt_compression mode is 'STRIPS', expected ATTRIBUTES, TRIANGLES or INDICES"}},
+        {"gltf_meshopt_fallback_read_plainly", ".glb",
+         [] {
+             // One more buffer view, over the fallback buffer and not compressed.
+             GltfParts parts = meshopt_grid_parts(grid_mesh(2));
+             parts.json = replaced(parts.json, "],\n  \"buffers\": [", ", {\"buffer\": 1, \"byteLength\": 8}],\n  \"buffers\": [");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 5 reads buffer 1, a EXT_meshopt_compression fallback buffer without data, but is not compressed"}},
     };
 }
 
