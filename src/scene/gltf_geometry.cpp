@@ -55,6 +55,7 @@ int component_count(int type) {
         case TINYGLTF_TYPE_VEC2: return 2;
         case TINYGLTF_TYPE_VEC3: return 3;
         case TINYGLTF_TYPE_VEC4: return 4;
+        case TINYGLTF_TYPE_MAT4: return 16;  // float only here (skins): no column padding
         default: return 0;
     }
 }
@@ -218,8 +219,10 @@ std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32
 }
 
 // glTF's rule for a primitive without normals: flat shading. Each triangle gets
-// its own three vertices carrying the face normal.
-void make_flat_normals(Mesh& mesh) {
+// its own three vertices carrying the face normal. `sources` gets the vertex
+// each new one copies.
+void make_flat_normals(Mesh& mesh, std::vector<std::uint32_t>& sources) {
+    sources = mesh.indices;
     const auto unweld = [&mesh](auto& attribute) {
         if (attribute.empty()) return;
         std::remove_reference_t<decltype(attribute)> split(mesh.indices.size());
@@ -315,8 +318,19 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
     } else {
         mesh.indices = triangle_list(mode, vertices);
     }
-    if (mesh.normals.empty()) make_flat_normals(mesh);
+    if (mesh.normals.empty()) make_flat_normals(mesh, result.vertex_sources);
     return result;
+}
+
+std::vector<float> read_accessor_floats(const tinygltf::Model& model, int index, const std::string& source,
+                                        const std::string& what, int type, std::initializer_list<int> component_types,
+                                        bool integers_need_normalized) {
+    const AccessorReader reader(model, source);
+    const CheckedAccessor a = reader.check(index, what, AccessorRule{type, component_types, integers_need_normalized});
+    std::vector<float> values(a.count * std::size_t(a.components));
+    for (std::size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < a.components; ++c) values[i * std::size_t(a.components) + std::size_t(c)] = component(a, i, c);
+    return values;
 }
 
 }  // namespace tessera::gltf

@@ -93,6 +93,9 @@ struct GltfContent {
     // One line each, without the file name: what was ignored (extensions the
     // file uses that are not supported). import_gltf_file prints them.
     std::vector<std::string> warnings;
+    // Skins, morph targets and animations (gltf_animation.hpp), with meshes and
+    // objects above at the rest pose; null when nothing in the file can move.
+    std::shared_ptr<const GltfRig> rig;
 };
 
 struct GltfReadOptions {
