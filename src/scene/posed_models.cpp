@@ -1,6 +1,7 @@
 // Posing a scene's glTF models (Scene::posed_models) at a frame or a time:
 // each model's meshes and objects recomputed from its rig's rest data, in
 // place (gltf_animation.hpp).
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -73,7 +74,8 @@ bool play_gltf_animation(Scene& scene, const std::string& animation_selector, do
     const double duration = playing->rig->animations[std::size_t(playing->animation)].duration;
     auto animation = std::make_shared<Animation>();
     animation->fps = fps;
-    animation->frame_count = int(std::min(std::lround(duration * fps), 999999L)) + 1;
+    // In double: a file's last key may be at any finite time (capped like [animation].frames).
+    animation->frame_count = int(std::min(std::round(duration * fps), 999999.0)) + 1;
     scene.animation = animation;
     set_scene_frame(scene, 0);
     return true;
