@@ -13,9 +13,12 @@
 //   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
 //   POSITION (required), NORMAL, TEXCOORD_n (the set the material's maps read; float, or normalized u8/u16) and
 //   TANGENT. Without NORMAL the primitive gets flat normals, as glTF requires
-//   (its vertices are split per triangle). Sparse accessors, accessors without a
-//   buffer view, morph targets and skins are not supported (skins: the mesh
-//   is drawn unskinned; sparse accessors are an error).
+//   (its vertices are split per triangle). Sparse accessors and accessors
+//   without a buffer view are not supported (an error).
+// - Skins, morph targets and animations: gltf_animation.hpp (GltfContent::rig).
+//   A node with a skin or a morphed mesh gets its own copy of the mesh, posed on
+//   the CPU at the rest pose (the nodes' own TRS and weights); skinned objects'
+//   model matrix is the identity (the spec ignores a skinned mesh's node).
 // - Materials (pbrMetallicRoughness): baseColorFactor.rgb × baseColorTexture
 //   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
