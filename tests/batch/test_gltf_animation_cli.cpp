@@ -78,6 +78,11 @@ TEST_CASE("tessera render --time and --animation refuse bad values with one line
           std::string::npos);
     CHECK(error_of({path, "--time", "1", "--frames", "0-3", "-o", (dir / "x_{frame}.png").string()}) ==
           "tessera: error: --time renders one moment and --frames a range of them; give one of the two\n");
+    const fs::path scene = dir / "scene.toml";
+    std::ofstream(scene) << "[camera]\nposition = [0, 1, 6]\ntarget = [0, 1, 0]\n[[models]]\nfile = \"strip.gltf\"\n";
+    CHECK(error_of({scene.string(), "--time", "1", "--animation", "0", "-o", out}) ==
+          "tessera: error: " + scene.string() + ": --animation selects a glTF file's animation; in a TOML scene each "
+          "[[models]] entry chooses its own with 'animation'\n");
     const fs::path still = dir / "still.gltf";
     std::ofstream(still) << tessera::test::embedded_test_gltf();
     CHECK(error_of({still.string(), "--time", "1", "-o", out}).find("no glTF model in the scene has an animation") !=

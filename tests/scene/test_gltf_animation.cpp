@@ -257,6 +257,14 @@ TEST_CASE("[[models]] animation plays a glTF file's animation over [animation]'s
         set_scene_frame(scene, 24);
         check_near(scene.meshes[0].positions[5], {0.5f, 2, 0});
     }
+    SUBCASE("--time in a TOML scene: a model's own choice and timing, else its first animation") {
+        Scene chosen = load_scene_file(write_scene("animation = \"bend\"\nanimation_start = 0.5\nanimation_speed = 0.5\n"));
+        set_scene_time(chosen, 1.0);  // 0.5 + 0.5 · 1 = 1 s
+        check_near(chosen.meshes[0].positions[5], {-1.0f, 1.5f, 0});
+        Scene first = load_scene_file(write_scene(""));
+        set_scene_time(first, 0.5);
+        check_near(first.meshes[0].positions[5], {-0.5f * kHalfRoot2, 1.5f * kHalfRoot2 + 1.0f, 0});
+    }
     SUBCASE("bad keys name file, line and column") {
         const std::string file = (dir / "scene.toml").string();
         CHECK(error_of([&] { load_scene_file(write_scene("animation = \"walk\"\n")); }) ==
