@@ -161,6 +161,47 @@ TEST_CASE("node animations: translation, rotation and scale by LINEAR, STEP and 
     }
 }
 
+TEST_CASE("skinned normals follow the inverse transpose, tangents the matrix, under scales and mirrors") {
+    // One joint (node 0) with an identity inverse bind matrix; one vertex fully bound to it.
+    GltfRig rig;
+    rig.nodes.resize(2);
+    rig.nodes[1].skin = 0;
+    rig.skins.push_back({{0}, {glm::mat4(1.0f)}});
+    gltf::DeformedMesh deformed;
+    deformed.node = 1;
+    deformed.positions = {{1, 2, 3}};
+    deformed.normals = {glm::normalize(glm::vec3(1, 1, 0))};
+    deformed.tangents = {{1, -1, 0, -1}};
+    deformed.influences_per_vertex = 4;
+    deformed.joints = {0, 0, 0, 0};
+    deformed.weights = {1, 0, 0, 0};
+    Mesh out;
+    out.positions.resize(1), out.normals.resize(1), out.tangents.resize(1);
+    gltf::NodePose pose;
+    pose.weights.resize(2);
+    const auto pose_with = [&](const glm::mat4& joint_world) {
+        pose.world = {joint_world, glm::mat4(1.0f)};
+        gltf::deform_mesh(rig, deformed, pose, out);
+    };
+    SUBCASE("scale (2, 1, 1): the normal of the plane x + y = c becomes that of x/2 + y = c") {
+        pose_with(glm::scale(glm::mat4(1.0f), glm::vec3(2, 1, 1)));
+        check_near(out.positions[0], {2, 2, 3});
+        check_near(out.normals[0], glm::normalize(glm::vec3(0.5f, 1, 0)));
+        check_near(glm::vec3(out.tangents[0]), glm::normalize(glm::vec3(2, -1, 0)));
+        CHECK(out.tangents[0].w == -1.0f);  // handedness kept
+    }
+    SUBCASE("mirror in X: the normal mirrors too (the cofactor's sign is fixed)") {
+        pose_with(glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, 1)));
+        check_near(out.positions[0], {-1, 2, 3});
+        check_near(out.normals[0], glm::normalize(glm::vec3(-1, 1, 0)));
+    }
+    SUBCASE("weights summing to 0 leave the vertex at rest") {
+        deformed.weights = {0, 0, 0, 0};
+        pose_with(glm::translate(glm::mat4(1.0f), glm::vec3(5, 0, 0)));
+        check_near(out.positions[0], {1, 2, 3});
+    }
+}
+
 TEST_CASE("LINEAR rotation keys slerp along the shorter arc (q and −q are one rotation)") {
     gltf::RigSampler sampler;
     sampler.width = 4;
