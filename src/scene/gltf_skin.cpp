@@ -160,6 +160,10 @@ DeformedMesh read_deformed_mesh(const tinygltf::Model& model, const std::string&
     deformed.weights.assign(vertices * influences, 0.0f);
     for (std::size_t s = 0; s < sets.size(); ++s) {
         const std::string set = std::to_string(s);
+        // Joint indices are counts, never normalized (read_accessor_floats would scale them).
+        if (std::size_t(sets[s].first) < model.accessors.size() && model.accessors[std::size_t(sets[s].first)].normalized)
+            fail(source, label + " JOINTS_" + set + " (accessor " + std::to_string(sets[s].first) +
+                             ") is normalized; joint indices must not be");
         const std::vector<float> joints =
             read(sets[s].first, "JOINTS_" + set, TINYGLTF_TYPE_VEC4,
                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, false);
