@@ -18,6 +18,7 @@ namespace texture {
 class Texture;  // texture/texture.hpp: an image with its mip chain, loaded with the scene
 }
 struct Animation;  // tessera/animation.hpp: what changes from frame to frame
+struct GltfRig;    // src/scene/gltf_animation.hpp: a glTF file's nodes, skins, morph targets and animations
 
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
@@ -166,6 +167,24 @@ struct Object {
     glm::mat4 model{1.0f};       // object -> world
 };
 
+// A glTF model in the scene that can be posed (it has skins, morph targets or
+// animations): its meshes and objects are recomputed from the rig's rest data
+// by set_scene_frame and set_scene_time (tessera/animation.hpp).
+struct PosedGltfModel {
+    std::shared_ptr<const GltfRig> rig;
+    std::uint32_t first_mesh = 0;    // its meshes are Scene::meshes[first_mesh + GltfContent mesh index]
+    std::uint32_t first_object = 0;  // and its objects Scene::objects[first_object + ...]
+    glm::mat4 placement{1.0f};       // world = placement × the file's world space
+    // The animation frames play ([[models]].animation, or --frames on a glTF
+    // file): index into the rig's animations; -1 = none (the model keeps its pose).
+    int animation = -1;
+    // At frame f the animation is at start_seconds + speed · f / fps seconds;
+    // with loop, wrapped into [0, duration).
+    double start_seconds = 0.0;
+    double speed = 1.0;
+    bool loop = false;
+};
+
 struct Scene {
     std::string source;  // where the scene came from, for messages
     int width = 1280;    // output size in pixels, 1..kMaxImageDimension
@@ -185,6 +204,9 @@ struct Scene {
     // are those of the current frame (frame 0 as loaded); set_scene_frame
     // (tessera/animation.hpp) moves the scene to another.
     std::shared_ptr<const Animation> animation;
+    // glTF models with skins, morph targets or animations (gltf-animation):
+    // what set_scene_frame and set_scene_time pose. Empty for other scenes.
+    std::vector<PosedGltfModel> posed_models;
 };
 
 // A scene file that cannot be used. what() reads "file:line:column: message"

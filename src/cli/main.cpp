@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <optional>
@@ -22,8 +23,10 @@
 #include "cli/frame_options.hpp"
 #include "cli/load_stats.hpp"
 #include "cli/tools_exec.hpp"
+#include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
+#include "tessera/animation.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
@@ -37,6 +40,8 @@ struct RenderCommand {
     int height = 0;
     int msaa = 0;                      // 0: the scene's own
     std::string camera;                // --camera NAME|INDEX of a glTF file; empty: its first
+    std::optional<std::string> time;   // --time SECONDS: glTF models' animations sampled then
+    std::string animation;             // --animation NAME|INDEX of a glTF file; empty: its first
     bool stats = false;
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
@@ -65,6 +70,32 @@ void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);
 }
 
+// --time SECONDS as a number; anything else is refused here, NaN and
+// negative times by set_scene_time.
+double parse_seconds(const std::string& text) {
+    char* end = nullptr;
+    const double seconds = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size())
+        throw std::invalid_argument("--time '" + text + "': expected a number of seconds");
+    return seconds;
+}
+
+// --time and --animation (glTF animations, README "Command line"); --frames on
+// a glTF file alone plays its animation at 24 fps.
+void pose_for_render(const RenderCommand& cmd, const std::string& scene_path, tessera::Scene& scene) {
+    const bool gltf = tessera::is_gltf_path(scene_path);
+    if (!cmd.animation.empty() && !gltf)
+        throw tessera::SceneError(scene_path + ": --animation selects a glTF file's animation; in a TOML scene "
+                                  "each [[models]] entry chooses its own with 'animation'");
+    if (cmd.time) {
+        tessera::set_scene_time(scene, parse_seconds(*cmd.time), cmd.animation);
+    } else if (!cmd.frames.empty() && gltf) {
+        tessera::play_gltf_animation(scene, cmd.animation);
+    } else if (!cmd.animation.empty()) {
+        throw tessera::SceneError(scene_path + ": --animation chooses what --time or --frames plays; give one of them");
+    }
+}
+
 // A scene file with the command line's size overrides; the batch validates each frame.
 // Models come from `models`; after loading the last scene they are dropped (the scene
 // holds what it uses), so its frames do not pay for them.
@@ -73,6 +104,7 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
     const auto start = std::chrono::steady_clock::now();
     tessera::Scene scene = tessera::load_scene_file(scene_path, models, cmd.camera);
     if (scene_path == cmd.scene_paths.back()) models.clear();
+    pose_for_render(cmd, scene_path, scene);
     if (cmd.stats)
         tessera::cli::print_load_stats(before, tessera::cli::read_load_counters(),
                                        tessera::cli::milliseconds_since(start));
@@ -91,6 +123,8 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
 
 // One failing scene does not stop the others; the exit status says whether any failed.
 int run_render(const RenderCommand& cmd) {
+    if (cmd.time && !cmd.frames.empty())
+        throw std::invalid_argument("--time renders one moment and --frames a range of them; give one of the two");
     tessera::batch::BatchJob job;
     job.scene_paths = cmd.scene_paths;
     job.outputs = cmd.outputs;
@@ -132,7 +166,7 @@ int run_render(const RenderCommand& cmd) {
 // Batch rendering: frame ranges of animated scenes, sharding, resuming (README "Batch rendering").
 void add_batch_options(CLI::App* command, RenderCommand& render) {
     command->add_option("--frames", render.frames,
-                        "Frames of each scene's [animation] to render: A-B[:STEP] (inclusive), comma-separated; "
+                        "Frames of each scene's [animation] (or of a glTF file's animation, at 24 fps) to render: A-B[:STEP] (inclusive), comma-separated; "
                         "-o must then contain {frame} or {frame:0N}. Without it: frame 0");
     command->add_option("--shard", render.shard,
                         "Render only part I of N (1-based) of the frames and scenes; default: from "
@@ -176,6 +210,12 @@ int main(int argc, char** argv) {
     render_app->add_option("--camera", render.camera,
                            "For glTF files: the camera to render from, by name or by index in the file's cameras "
                            "(default: the first perspective camera in the node tree)");
+    render_app->add_option("--time", render.time,
+                           "Pose glTF models at this many seconds into their animation (skins, morph weights, "
+                           "nodes); default: their rest pose");
+    render_app->add_option("--animation", render.animation,
+                           "For glTF files: the animation --time or --frames plays, by name or index (default: the "
+                           "first); --frames on a glTF file renders its animation at 24 fps");
 
     // Image analysis lives in tessera-tools beside this binary (it links
     // OpenImageIO, which renders do not need): main() execs it for these.

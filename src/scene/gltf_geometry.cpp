@@ -32,8 +32,10 @@ std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32
 }
 
 // glTF's rule for a primitive without normals: flat shading. Each triangle gets
-// its own three vertices carrying the face normal.
-void make_flat_normals(Mesh& mesh) {
+// its own three vertices carrying the face normal. `sources` gets the vertex
+// each new one copies.
+void make_flat_normals(Mesh& mesh, std::vector<std::uint32_t>& sources) {
+    sources = mesh.indices;
     const auto unweld = [&mesh](auto& attribute) {
         if (attribute.empty()) return;
         std::remove_reference_t<decltype(attribute)> split(mesh.indices.size());
@@ -151,8 +153,15 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
     } else {
         mesh.indices = triangle_list(mode, vertices);
     }
-    if (mesh.normals.empty()) make_flat_normals(mesh);
+    if (mesh.normals.empty()) make_flat_normals(mesh, result.vertex_sources);
     return result;
+}
+
+std::vector<float> read_accessor_floats(const tinygltf::Model& model, int index, const std::string& source,
+                                        const std::string& what, int type, std::initializer_list<int> component_types,
+                                        bool integers_need_normalized) {
+    return read_floats(AccessorReader(model, source)
+                           .check(index, what, AccessorRule{type, component_types, integers_need_normalized}));
 }
 
 }  // namespace tessera::gltf

@@ -22,7 +22,10 @@
 //   Compressed geometry is decoded right after parsing (gltf_compression.hpp):
 //   EXT_meshopt_compression buffer views (every mode and filter; fallback
 //   buffers are never read) and KHR_draco_mesh_compression primitives.
-//   Morph targets and skins are not supported (the mesh is drawn unskinned).
+// - Skins, morph targets and animations: gltf_animation.hpp (GltfContent::rig).
+//   A node with a skin or a morphed mesh gets its own copy of the mesh, posed on
+//   the CPU at the rest pose (the nodes' own TRS and weights); skinned objects'
+//   model matrix is the identity (the spec ignores a skinned mesh's node).
 // - Materials (pbrMetallicRoughness): baseColorFactor.rgb × baseColorTexture
 //   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
@@ -100,6 +103,9 @@ struct GltfContent {
     // One line each, without the file name: what was ignored (extensions the
     // file uses that are not supported). import_gltf_file prints them.
     std::vector<std::string> warnings;
+    // Skins, morph targets and animations (gltf_animation.hpp), with meshes and
+    // objects above at the rest pose; null when nothing in the file can move.
+    std::shared_ptr<const GltfRig> rig;
 };
 
 struct GltfReadOptions {

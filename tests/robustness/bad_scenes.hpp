@@ -4,10 +4,12 @@
 // stands for the file name, so rows can pin the line and column ("@:3:9:").
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "scene/gltf_animation_files.hpp"
 #include "scene/gltf_compressed_files.hpp"
 #include "scene/gltf_test_files.hpp"
 
@@ -328,6 +330,54 @@ inline std::vector<BadGltf> bad_gltf_files() {
          }(),
          {"@: bufferView 5 reads buffer 1, a EXT_meshopt_compression fallback buffer without data, but is not compressed"}},
     };
+}
+
+// Bad skins, morph targets and animations (gltf_animation_files.hpp, broken).
+inline std::vector<BadGltf> bad_gltf_animation_files() {
+    const std::string strip = skinned_strip_gltf(), morph = morph_triangle_gltf(), node = animated_node_gltf();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    return {
+        {"gltf_skin_joint_out_of_range", ".gltf", replaced(strip, "\"joints\": [1, 2]", "\"joints\": [1, 9]"),
+         {"@: skins[0] 'bones' joint [1] is node 9 but the file has 3 nodes"}},
+        {"gltf_skin_vertex_joint_out_of_range", ".gltf", replaced(strip, "\"joints\": [1, 2]", "\"joints\": [1]"),
+         {"@: meshes[0] 'strip' primitives[0] JOINTS_0 of vertex 2 names joint 1 but its skin has 1 joints"}},
+        {"gltf_skin_weights_without_joints", ".gltf", replaced(strip, "\"JOINTS_0\"", "\"JOINTS_5\""),
+         {"@: meshes[0] 'strip' primitives[0] has WEIGHTS_0 without JOINTS_0"}},
+        {"gltf_skin_joints_normalized", ".gltf",
+         replaced(strip, "\"componentType\": 5121, \"count\": 6", "\"componentType\": 5121, \"normalized\": true, \"count\": 6"),
+         {"@: meshes[0] 'strip' primitives[0] JOINTS_0 (accessor 2) is normalized; joint indices must not be"}},
+        {"gltf_skin_unknown", ".gltf", replaced(strip, "\"skin\": 0", "\"skin\": 4"),
+         {"@: nodes[0] 'strip' uses skin 4 but the file has 1 skins"}},
+        {"gltf_morph_weights_count", ".gltf", replaced(morph, "\"weights\": [0.5, 0]", "\"weights\": [0.5]"),
+         {"@: meshes[0] 'triangle' has 1 weights for 2 morph targets"}},
+        {"gltf_sampler_count_mismatch", ".gltf", replaced(node, "\"interpolation\": \"STEP\"", "\"interpolation\": \"CUBICSPLINE\""),
+         {"@: animations[1] 'step' samplers[0] has 3 key times but 3 output elements; expected 9 (3 per key)"}},
+        {"gltf_sampler_times_not_increasing", ".gltf", animated_node_gltf({0, 1, 1}),
+         {"@: animations[1] 'step' samplers[0] input times are not strictly increasing: [2] = 1 after 1"}},
+        {"gltf_sampler_time_negative", ".gltf", animated_node_gltf({-1, 1, 2}),
+         {"@: animations[1] 'step' samplers[0] input time [0] is -1, expected a finite number >= 0"}},
+        {"gltf_sampler_time_nan", ".gltf", animated_node_gltf({0, nan, 2}),
+         {"@: animations[1] 'step' samplers[0] input time [1] is nan, expected a finite number >= 0"}},
+        {"gltf_sampler_value_nan", ".gltf", animated_node_gltf({0, 1, 2}, {0, 0, 0, nan, 0, 0, 5, 0, 0}),
+         {"@: animations[1] 'step' samplers[0] output value [3] is not finite"}},
+        {"gltf_sampler_interpolation_unknown", ".gltf", replaced(node, "\"interpolation\": \"STEP\"", "\"interpolation\": \"SMOOTH\""),
+         {"@: animations[1] 'step' samplers[0] has interpolation 'SMOOTH', expected LINEAR, STEP or CUBICSPLINE"}},
+        {"gltf_channel_weights_without_morph", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"weights\""),
+         {"@: animations[0] 'linear' channels[1] animates the morph weights of nodes[0] 'mover', which has no mesh with morph targets"}},
+        {"gltf_channel_twice", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"translation\""),
+         {"@: animations[0] 'linear' channels[1] animates nodes[0] 'mover' translation again"}},
+        {"gltf_channel_node_out_of_range", ".gltf", replaced(node, "\"node\": 0, \"path\": \"scale\"", "\"node\": 7, \"path\": \"scale\""),
+         {"@: animations[0] 'linear' channels[1] targets node 7 but the file has 2 nodes"}},
+        {"gltf_channel_path_unknown", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"color\""),
+         {"@: animations[0] 'linear' channels[1] has target path 'color', expected translation, rotation, scale or weights"}},
+    };
+}
+
+// Every bad glTF row: the importer's and those of skins and animations.
+inline std::vector<BadGltf> all_bad_gltf_files() {
+    std::vector<BadGltf> rows = bad_gltf_files();
+    for (BadGltf& row : bad_gltf_animation_files()) rows.push_back(std::move(row));
+    return rows;
 }
 
 }  // namespace tessera::test
