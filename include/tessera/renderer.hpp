@@ -37,11 +37,12 @@ struct RenderSettings {
     // Fill RenderedImage::radiance (what EXR output needs). Without it a frame
     // writes only the 8-bit display image, as an OpenGL RGBA8 framebuffer would.
     bool keep_radiance = true;
-    // Per-tile light culling: a light with a range (Light::range) is shaded only
-    // in tiles whose visible points it reaches. Off, every light is shaded
-    // everywhere, as the reference shader does. Scenes without ranges give the
-    // same image, bit for bit, either way; with ranges, the culled image depends
-    // on the tile size (not on the thread count).
+    // Light ranges and culling: a light with a range (Light::range) adds nothing
+    // to a visible point farther away, and clustered culling (shade/light_culling.hpp)
+    // skips it per tile and per cluster of fragments where it reaches none.
+    // The image depends on neither the tile size nor the thread count. Off,
+    // every light is shaded everywhere, as the reference shader does. Scenes
+    // without ranges give the same image, bit for bit, either way.
     bool light_culling = true;
     // AOV planes to fill in RenderedImage::aov. None by default: a frame
     // without AOVs neither allocates nor writes them.

@@ -25,6 +25,7 @@
 #include "render/frame_memory.hpp"
 #include "render/huge_pages.hpp"
 #include "shade/alpha_mask.hpp"
+#include "shade/light_culling.hpp"
 #include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
 #include "shade/surface_gather.hpp"
@@ -57,7 +58,7 @@ struct WorkerScratch {
     shade::FragmentBuffer fragments;
     std::vector<shade::MaterialRun> material_runs;
     shade::MaterialScratch material_scratch;
-    shade::ShadingLights tile_lights;  // the frame's lights that reach this tile (light culling)
+    shade::LightCullScratch light_culling;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
     std::uint64_t tile_triangles = 0;  // rasterized in the current tile (profile)
@@ -394,7 +395,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     size_aov_planes(settings.aovs, pixels, image.aov);
     view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
-    for (WorkerScratch& s : scratch) s.tile_lights.reserve(lights.count());  // a no-op once large enough
+    for (WorkerScratch& s : scratch) s.light_culling.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
@@ -569,12 +570,14 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
     if (count > 0) {
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
         const shade::FragmentInputs inputs = s.fragments.inputs(count);
-        const shade::ShadingLights& tile_lights =
-            settings.light_culling && lights.any_range
-                ? shade::lights_reaching(lights, shade::fragment_bounds(inputs), s.tile_lights)
-                : lights;
-        shade::shade_fragments(isa, inputs, tile_lights, s.fragments.outputs());
-        s.tile_light_count = std::uint32_t(tile_lights.count());
+        if (settings.light_culling && lights.any_range) {
+            const shade::CulledWork work =
+                shade::shade_fragments_culled(isa, inputs, lights, s.light_culling, s.fragments.outputs());
+            s.tile_light_count = std::uint32_t(work.tile_lights);
+        } else {
+            shade::shade_fragments(isa, inputs, lights, s.fragments.outputs());
+            s.tile_light_count = std::uint32_t(lights.count());
+        }
         shade::add_emission(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;
