@@ -95,6 +95,7 @@ struct FrameStats {
     std::uint64_t triangles_binned = 0;      // left after clipping, culling and setup
     std::uint64_t fragments_rasterized = 0;  // pixel centres covered, over all triangles
     std::uint64_t fragments_shaded = 0;      // visible pixels, each shaded once
+    std::uint64_t fragment_lights = 0;       // Σ fragments × the lights looped over for them, after light culling
     // Wall-clock time of the frame's three passes, one after the other.
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
     double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk
