@@ -118,19 +118,21 @@ struct Light {
     // inside `inner`, none outside `outer`, the reference's clamp ramp of cos θ between.
     float inner_cone_degrees = 0.0f;
     float outer_cone_degrees = 45.0f;
-    // Distance past which this light may be left out of shading (per-tile light
-    // culling: a tile none of whose visible points lies within range skips it;
-    // points within range of a tile that is shaded get the light in full). A
-    // promise by the scene that the light adds next to nothing farther away.
-    // 0 = unlimited, never culled. Point and spot only.
+    // Distance past which this light adds nothing, a hard cut per visible point
+    // (with RenderSettings::light_culling, the default): a promise by the scene
+    // that the light adds next to nothing farther away, which lets light
+    // culling skip it wherever no point is within range. Points within range
+    // get the light in full. 0 = unlimited, never culled. Point and spot only.
     float range = 0.0f;
 };
 
 // The irradiance below which a light counts as negligible for range = "auto":
 // the range is where the light's brightest channel, color / d², falls to this.
 // Chosen by measurement on scenes/many_lights.toml (256 lights): at 1/256 the
-// many culled tails add up (most pixels 2+ steps off); at 1/4096 0.1% of the
-// 8-bit values differ by more than one step. Glints of far lights on
+// many culled tails add up (most pixels 2+ steps off); at 1/4096 0.13% of the
+// 8-bit values differ by more than one step from the uncut image (every tail
+// cut per pixel; 0.1% when tails were cut only where a whole tile lay out of
+// range). Glints of far lights on
 // mirror-like surfaces (GGX peak 1/(π·a²) = 5e4 at roughness 0.05) magnify any
 // threshold: those single pixels can differ a lot. tests/render/test_light_culling.cpp
 // holds the scene to that tolerance.

@@ -17,7 +17,7 @@ void add_frame_options(CLI::App* command, int& width, int& height, int& msaa, Re
     command->add_option("--isa", settings.isa, "SIMD kernels: auto, scalar, sse4, avx2, avx512");
     command->add_flag_callback(
         "--no-light-culling", [&settings] { settings.light_culling = false; },
-        "Shade every light in every tile, ranges or not (to compare with the culled image)");
+        "Ignore light ranges: shade every light at every pixel, as the reference shader does");
 }
 
 }  // namespace tessera::cli

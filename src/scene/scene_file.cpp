@@ -28,7 +28,7 @@
 //   inner_cone = 0.0                # spot: full radiance within this angle of direction, degrees; default 0
 //   outer_cone = 45.0               # spot: no radiance beyond it, degrees; default 45; 0 <= inner < outer <= 90
 //   range = 12.5                    # point and spot: a number > 0, or "auto"; default unlimited.
-//                                   # Past its range a light may be culled per tile (Light::range);
+//                                   # Past its range a light adds nothing (Light::range, light culling);
 //                                   # "auto" is where max(color) / d² falls to kAutoRangeIrradiance (1/4096)
 //   A key that does not apply to the light's type (position of a directional light,
 //   cones of a point light...) is an error.
