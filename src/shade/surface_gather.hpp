@@ -31,6 +31,9 @@ public:
         dpdy_x, dpdy_y, dpdy_z,        // dFdy(WorldPos)
         tangent_x, tangent_y, tangent_z, tangent_w,  // stored world-space tangent; w = 0: none, derive from derivatives
         emissive_r, emissive_g, emissive_b,
+        // Blended materials only (AlphaMode::blend): alpha_factor × vertex colour alpha,
+        // × the albedo map's alpha after the material pass.
+        alpha,
         kChannels
     };
 
@@ -70,6 +73,9 @@ struct TriangleCorners {
     // pixel position: their change per pixel right and per pixel down.
     float lambda1_dx = 0, lambda1_dy = 0, lambda2_dx = 0, lambda2_dy = 0;
     const glm::vec4* tangent[3] = {nullptr, nullptr, nullptr};  // world-space tangents where the mesh has them
+    // Linear RGBA vertex colours (Mesh::colors) where the mesh has them; they
+    // multiply the albedo (and alpha), interpolated perspective-correctly.
+    const glm::vec4* color[3] = {nullptr, nullptr, nullptr};
 };
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`,
@@ -120,6 +126,9 @@ public:
             normal_d1_ = c_.corner[1]->normal - normal0_, normal_d2_ = c_.corner[2]->normal - normal0_;
             uv0_ = c_.corner[0]->uv;
             uv_d1_ = c_.corner[1]->uv - uv0_, uv_d2_ = c_.corner[2]->uv - uv0_;
+            colored_ = c_.color[0] != nullptr;
+            blended_ = c_.material->alpha_mode == AlphaMode::blend;
+            if (colored_) color0_ = *c_.color[0], color_d1_ = *c_.color[1] - color0_, color_d2_ = *c_.color[2] - color0_;
         }
         if (runs_.empty() || runs_.back().material != c_.material) {
             if (!runs_.empty()) runs_.back().end = std::uint32_t(count_);
@@ -128,6 +137,7 @@ public:
         const auto [b1, b2] = raster::perspective_barycentrics(inv_w_, lambda1, lambda2);
         const glm::vec3 world = world0_ + b1 * world_d1_ + b2 * world_d2_;
         out_.set(count_, world, normal0_ + b1 * normal_d1_ + b2 * normal_d2_, *c_.material);
+        if (colored_ || blended_) [[unlikely]] add_color_and_alpha(b1, b2);
         if (textured_) {
             const glm::vec2 uv = uv0_ + b1 * uv_d1_ + b2 * uv_d2_;
             // The quad partners: the pixel beside this one in the quad's row and in its column.
@@ -156,6 +166,18 @@ public:
         ++count_;
     }
 
+    // Vertex colours multiply the gathered albedo; blended materials get their alpha.
+    void add_color_and_alpha(float b1, float b2) {
+        using C = FragmentBuffer;
+        float alpha = c_.material->alpha_factor;
+        if (colored_) {
+            const glm::vec4 color = color0_ + b1 * color_d1_ + b2 * color_d2_;
+            for (int k = 0; k < 3; ++k) out_.channel(C::Channel(C::albedo_r + k))[count_] *= color[k];
+            alpha *= color.a;
+        }
+        if (blended_) out_.channel(C::alpha)[count_] = alpha;
+    }
+
     std::size_t finish() {
         if (!runs_.empty()) runs_.back().end = std::uint32_t(count_);
         out_.pad(count_);
@@ -169,8 +191,9 @@ private:
     std::size_t count_ = 0;
     std::uint32_t cached_id_ = raster::kNoTriangle;
     TriangleCorners c_{};
-    bool textured_ = false;
+    bool textured_ = false, colored_ = false, blended_ = false;
     std::array<float, 3> inv_w_{};
+    glm::vec4 color0_{}, color_d1_{}, color_d2_{};
     glm::vec3 world0_{}, world_d1_{}, world_d2_{}, normal0_{}, normal_d1_{}, normal_d2_{};
     glm::vec2 uv0_{}, uv_d1_{}, uv_d2_{};
 };
