@@ -604,7 +604,7 @@ shade::TriangleCorners Renderer::Frame::corners_of(const Scene& scene, std::uint
                                     &chunk.vertex(t.vertex[2], vertices)},
                                    &scene.materials[object.material]};
     if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
-    if (chunk.colors)
+    if (chunk.colors) [[unlikely]]
         for (int k = 0; k < 3; ++k) corners.color[k] = &chunk.color(t.vertex[k], first_vertex[chunk.object]);
     return corners;
 }
