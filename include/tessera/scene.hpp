@@ -60,6 +60,10 @@ enum class DerivedTangentFrame {
 enum class AlphaMode : std::uint8_t {
     opaque,  // alpha ignored
     mask,    // a fragment whose alpha < alpha_cutoff is discarded before the depth write
+    // Drawn after the opaque geometry, objects back to front, each fragment
+    // tested against the opaque depth (no depth write) and composited "over" in
+    // scene-linear radiance: src·alpha + dst·(1 − alpha) (src/image/blend.hpp).
+    blend,
 };
 
 // The reference shader's material inputs. Each map multiplies the factor
@@ -91,8 +95,9 @@ struct Material {
     // as the reference does, with the same shading (no normal flip).
     bool double_sided = true;
 
-    // Alpha = alpha_factor × albedo map's alpha (where mapped). glTF's baseColorFactor[3] and
-    // baseColorTexture's alpha; only AlphaMode::mask uses it.
+    // Alpha = alpha_factor × albedo map's alpha (where mapped) × the mesh's colour alpha (where
+    // it has Mesh::colors). glTF's baseColorFactor[3], baseColorTexture's alpha and COLOR_0's;
+    // AlphaMode::mask and AlphaMode::blend use it.
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_factor = 1.0f;  // [0, 1]
     float alpha_cutoff = 0.5f;  // mask: discarded below this; finite, >= 0 (glTF's default 0.5)
@@ -160,6 +165,10 @@ struct Mesh {
     std::vector<glm::vec2> uvs;            // empty, or one per position; (0, 0) = top-left of a texture
     std::vector<glm::vec4> tangents;       // empty, or one per position: xyz and handedness w = ±1 (glTF TANGENT)
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
+    // Added for vertex colours (glTF COLOR_0): empty, or one per position, linear RGBA in
+    // [0, 1] (alpha 1 where the file gives RGB). RGB multiplies the material's albedo and
+    // its map, alpha its alpha; interpolated perspective-correctly like the uvs.
+    std::vector<glm::vec4> colors;
 };
 
 // One placed instance of a mesh.

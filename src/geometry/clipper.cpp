@@ -55,6 +55,7 @@ void clip_triangle(const ShadedVertex& a, const ShadedVertex& b, const ShadedVer
     ClippedPolygon* dst = &scratch;
     src->corners[0] = a, src->corners[1] = b, src->corners[2] = c;
     src->source[0] = 0, src->source[1] = 1, src->source[2] = 2;
+    src->weights[0] = {1, 0, 0}, src->weights[1] = {0, 1, 0}, src->weights[2] = {0, 0, 1};
     src->count = 3;
     for (int plane = 0; plane < 6 && src->count > 0; ++plane) {
         if (!(planes & (1u << plane))) continue;
@@ -67,6 +68,7 @@ void clip_triangle(const ShadedVertex& a, const ShadedVertex& b, const ShadedVer
             const float dq = plane_distance(plane, q.clip_pos, guard);
             if (dp >= 0.0f) {
                 dst->corners[dst->count] = p;
+                dst->weights[dst->count] = src->weights[i];
                 dst->source[dst->count++] = src->source[i];
             }
             if ((dp >= 0.0f) != (dq >= 0.0f)) {
@@ -75,6 +77,8 @@ void clip_triangle(const ShadedVertex& a, const ShadedVertex& b, const ShadedVer
                 const bool p_inside = dp >= 0.0f;
                 const float t = p_inside ? dp / (dp - dq) : dq / (dq - dp);
                 dst->corners[dst->count] = p_inside ? lerp(p, q, t) : lerp(q, p, t);
+                const glm::vec3 &wp = src->weights[i], &wq = src->weights[j];
+                dst->weights[dst->count] = p_inside ? wp + t * (wq - wp) : wq + t * (wp - wq);
                 dst->source[dst->count++] = -1;
             }
         }

@@ -62,6 +62,9 @@ struct ClippedPolygon {
     std::array<ShadedVertex, kMaxCorners> corners;
     // Which input corner each output corner is (0..2), or -1 for a new vertex.
     std::array<int, kMaxCorners> source;
+    // Each corner as weights of the input corners a, b, c (interpolated as the
+    // attributes are): what attributes kept outside ShadedVertex (vertex colours) need.
+    std::array<glm::vec3, kMaxCorners> weights;
     int count = 0;
 };
 

@@ -79,7 +79,7 @@ private:
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples, Culling culling) {
+                        AssembledTriangles& out, int samples, Culling culling, std::span<const glm::vec4> colors) {
     SetupQueue queue(isa, frame, viewport, out, samples, culling);
     geometry::ClippedPolygon polygon;
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
@@ -104,6 +104,11 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
             } else {
                 corner_ref[i] = geometry::kClippedVertexBit | std::uint32_t(out.clipped_vertices.size());
                 out.clipped_vertices.push_back(polygon.corners[i]);
+                if (!colors.empty()) {
+                    const glm::vec3& w = polygon.weights[i];
+                    out.clipped_colors.push_back(w.x * colors[indices[t]] + w.y * colors[indices[t + 1]] +
+                                                 w.z * colors[indices[t + 2]]);
+                }
             }
         }
         for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0

@@ -24,7 +24,8 @@ struct FrameVertices {
 struct AssembledTriangles {
     std::vector<RasterTriangle> triangles;                 // in submission order
     std::vector<geometry::ShadedVertex> clipped_vertices;  // corners made by clipping (kClippedVertexBit refs)
-    void clear() { triangles.clear(), clipped_vertices.clear(); }
+    std::vector<glm::vec4> clipped_colors;  // beside clipped_vertices, for meshes with vertex colours only
+    void clear() { triangles.clear(), clipped_vertices.clear(), clipped_colors.clear(); }
 };
 
 // Appends to `out` the triangles of `indices` (three per triangle, relative to
@@ -34,10 +35,13 @@ struct AssembledTriangles {
 // time with the ISA's kernels (the same result as one by one); clipped ones
 // become fans. samples: 1, or 4 for 4× MSAA (set up one by one: the kernels
 // test pixel centres only). culling: which windings setup drops (clipping
-// keeps a triangle's winding, so its pieces are culled alike).
+// keeps a triangle's winding, so its pieces are culled alike). colors: the
+// mesh's vertex colours (indexed like `indices`) or empty; a corner clipping
+// makes gets its colour interpolated as its other attributes are.
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples = 1, Culling culling = Culling::none);
+                        AssembledTriangles& out, int samples = 1, Culling culling = Culling::none,
+                        std::span<const glm::vec4> colors = {});
 
 }  // namespace tessera::raster

@@ -30,6 +30,8 @@ struct alignas(128) Chunk {
     std::uint32_t first_triangle = 0;  // index into the mesh's triangles
     std::uint32_t triangle_count = 0;
     bool alpha_tested = false;  // the object's material is masked: fragments take the alpha test
+    bool blended = false;       // the object's material blends: drawn in the blend pass, after the opaque ones
+    const glm::vec4* colors = nullptr;  // the mesh's vertex colours (Mesh::colors), or null
     raster::AssembledTriangles assembled;
     raster::ChunkBins bins;
 
@@ -37,6 +39,11 @@ struct alignas(128) Chunk {
     const geometry::ShadedVertex& vertex(std::uint32_t ref, const std::vector<geometry::ShadedVertex>& frame) const {
         return (ref & geometry::kClippedVertexBit) ? assembled.clipped_vertices[ref & ~geometry::kClippedVertexBit]
                                                    : frame[ref];
+    }
+    // A corner's vertex colour (colors set); first_vertex: the object's first frame vertex.
+    const glm::vec4& color(std::uint32_t ref, std::uint32_t first_vertex) const {
+        return (ref & geometry::kClippedVertexBit) ? assembled.clipped_colors[ref & ~geometry::kClippedVertexBit]
+                                                   : colors[ref - first_vertex];
     }
 };
 

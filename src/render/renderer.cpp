@@ -17,8 +17,11 @@
 #include <tbb/task_arena.h>
 
 #include "geometry/clipper.hpp"
+#include "geometry/draw_order.hpp"
 #include "geometry/vertex_stage.hpp"
+#include "image/blend.hpp"
 #include "image/resolve.hpp"
+#include "raster/blend_raster.hpp"
 #include "raster/msaa.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_assembly.hpp"
@@ -59,6 +62,8 @@ struct WorkerScratch {
     std::vector<shade::MaterialRun> material_runs;
     shade::MaterialScratch material_scratch;
     shade::LightCullScratch light_culling;
+    raster::BlendFragments blend_fragments;  // blended objects only: reserved at the first tile that has them
+    image::TileRadiance blend_radiance;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
     std::uint64_t fragment_lights = 0;
@@ -94,8 +99,10 @@ void check_renderable(const Scene& scene) {
         if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size())
             throw std::invalid_argument("object " + std::to_string(o) + " refers to a missing mesh or material");
         const Mesh& mesh = scene.meshes[object.mesh];
-        if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0)
-            throw std::invalid_argument("mesh '" + mesh.name + "' needs one normal per position and whole triangles");
+        if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0 ||
+            (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()))
+            throw std::invalid_argument("mesh '" + mesh.name +
+                                        "' needs one normal (and colour, if any) per position and whole triangles");
     }
     if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
         throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
@@ -179,6 +186,8 @@ struct Renderer::Frame {
     std::vector<std::uint32_t> first_vertex;       // per object, into `vertices`
     std::vector<render::Chunk> chunks;             // only the first chunk_count are this frame's
     std::size_t chunk_count = 0;
+    std::vector<std::uint32_t> object_first_chunk;  // per object, its first chunk; then chunk_count
+    std::vector<std::uint32_t> blend_chunks;       // the blended objects' chunks, in drawing order (geometry/draw_order.hpp)
     raster::TileGrid grid;
     shade::ShadingLights lights;
     image::ViewDepth view_depth;  // for the depth AOV
@@ -196,6 +205,17 @@ struct Renderer::Frame {
     void render_tiles(const Scene& scene);
     void render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
     void render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& scratch);
+    // Whether blended triangles touch the tile; if so, the worker's blend memory is made ready.
+    bool has_blended(int tile, int msaa, WorkerScratch& s) const {
+        const bool any = std::any_of(blend_chunks.begin(), blend_chunks.end(),
+                                     [&](std::uint32_t c) { return !chunks[c].bins.tile(tile).empty(); });
+        if (any && (s.blend_radiance.side != grid.tile_size || s.blend_radiance.samples != msaa)) {
+            s.blend_radiance.reserve(grid.tile_size, msaa);
+            s.blend_fragments.reserve(grid.tile_size, msaa);
+        }
+        return any;
+    }
+    void blend_tile(const Scene& scene, const image::ClearValues& clear, int tile, bool opaque_drawn, WorkerScratch& s);
     void record_span(WorkerScratch& s, ProfileSpan span, Clock::time_point start, Clock::time_point end) const {
         span.worker = tbb::this_task_arena::current_thread_index();
         span.start_ms = ms_between(frame_start, start), span.end_ms = ms_between(frame_start, end);
@@ -206,7 +226,8 @@ struct Renderer::Frame {
     bool rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const;
     template <class Gather, class Resolve>
     void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, int tile, bool drawn,
-                           Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve);
+                           Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve,
+                           bool blended);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
     const raster::RasterTriangle& triangle_of(std::uint32_t id) const {
@@ -329,7 +350,9 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
 // Cuts every object's triangles into chunks; the cut depends on the scene only.
 void Renderer::Frame::cut_into_chunks(const Scene& scene) {
     chunk_count = 0;
+    object_first_chunk.resize(scene.objects.size() + 1);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        object_first_chunk[o] = std::uint32_t(chunk_count);
         const auto triangles = std::uint32_t(scene.meshes[scene.objects[o].mesh].indices.size() / 3);
         for (std::uint32_t first = 0; first < triangles; first += render::kChunkTriangles) {
             if (chunk_count >= render::kMaxChunks) throw std::invalid_argument("the scene has too many triangles");
@@ -338,8 +361,15 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
             chunk.object = std::uint32_t(o);
             chunk.first_triangle = first;
             chunk.triangle_count = std::min(render::kChunkTriangles, triangles - first);
+            chunk.blended = scene.materials[scene.objects[o].material].alpha_mode == AlphaMode::blend;
+            const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
+            chunk.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
         }
     }
+    object_first_chunk.back() = std::uint32_t(chunk_count);
+    blend_chunks.clear();
+    for (const std::uint32_t o : geometry::blended_objects_back_to_front(scene))
+        for (std::uint32_t c = object_first_chunk[o]; c < object_first_chunk[o + 1]; ++c) blend_chunks.push_back(c);
 }
 
 // Each chunk is binned right after it is assembled, while its triangles are
@@ -362,7 +392,8 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
         render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
-                                   chunk.assembled, scene.msaa, culling_of(scene, object));
+                                   chunk.assembled, scene.msaa, culling_of(scene, object),
+                                   {chunk.colors, chunk.colors ? scene.meshes[object.mesh].colors.size() : 0});
         const auto t1 = Clock::now();
         chunk.bins.build(grid, chunk.assembled.triangles);
         const auto t2 = Clock::now();
@@ -447,6 +478,7 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
         const render::Chunk& chunk = chunks[c];
         const std::span<const std::uint32_t> bin = chunk.bins.tile(tile);
         s.tile_triangles += bin.size();
+        if (chunk.blended) continue;  // the blend pass draws them
         for (std::size_t i = 0; i < bin.size(); ++i) {
             if (!is_reset) reset(), is_reset = true;
             // A tile's triangles lie scattered through the chunk: fetch ahead.
@@ -476,6 +508,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                                           raster::rasterize_triangle(t, id, rect, s.raster, s.counters,
                                                                      {shade::alpha_mask_keep, &mask});
                                       });
+    const bool blended = has_blended(tile, scene.msaa, s);
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
@@ -484,9 +517,11 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
-            image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+            if (blended) image::fill_opaque(s.raster, rect, shaded, clear, s.blend_radiance);
+            else image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
             if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
-        });
+        },
+        blended);
 }
 
 // render_tile with 4 samples per pixel: depth and triangle per sample, one
@@ -502,6 +537,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                                           const raster::FragmentTest test{shade::alpha_mask_keep, &mask};
                                           raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters, &test);
                                       });
+    const bool blended = has_blended(tile, scene.msaa, s);
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,
         [&] {  // one fragment per pixel and visible triangle
@@ -513,21 +549,24 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
-            image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
+            if (blended) image::fill_opaque(s.samples, rect, shaded, clear, s.blend_radiance);
+            else image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
             if (!image.aov.empty())
                 image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
-        });
+        },
+        blended);
 }
 
 // The tail both tile paths share, from the end of rasterization (begun at
 // raster_start): gather the visible fragments, shade them, resolve them into
 // the images, and time each step; a tile nothing was drawn on is only cleared.
 // gather() fills s.fragments and returns their count; resolve(count, shaded)
-// writes the pixels and AOVs.
+// writes the pixels and AOVs. blended: the tile has blended triangles, drawn
+// over the opaque result (blend_tile; its time counts as shading).
 template <class Gather, class Resolve>
 void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearValues& clear, int tile, bool drawn,
                                         Clock::time_point raster_start, WorkerScratch& s, Gather&& gather,
-                                        Resolve&& resolve) {
+                                        Resolve&& resolve, bool blended) {
     const auto t1 = Clock::now();
     s.rasterize_ms += ms_between(raster_start, t1);
     std::size_t count = 0;
@@ -541,6 +580,11 @@ void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearVa
         resolve(count, shaded);
     } else {  // background only
         image::clear_tile(grid.rect(tile), clear, image);
+    }
+    if (blended) {
+        const auto blend_start = Clock::now();
+        blend_tile(scene, clear, tile, drawn, s);
+        t2 += Clock::now() - blend_start;
     }
     const auto t3 = Clock::now();
     s.shade_ms += ms_between(t1, t2);
@@ -563,7 +607,46 @@ shade::TriangleCorners Renderer::Frame::corners_of(const Scene& scene, std::uint
                                     &chunk.vertex(t.vertex[2], vertices)},
                                    &scene.materials[object.material]};
     if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
+    if (chunk.colors) [[unlikely]]
+        for (int k = 0; k < 3; ++k) corners.color[k] = &chunk.color(t.vertex[k], first_vertex[chunk.object]);
     return corners;
+}
+
+// The blend pass of a tile (image/blend.hpp): the blended objects' triangles
+// in drawing order, tested against the opaque depth, shaded in batches as
+// large as the fragment buffer, composited in order over the opaque radiance,
+// which is then written into the images. opaque_drawn: the opaque pass left
+// fragments (and filled s.blend_radiance); otherwise the tile is background.
+void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& clear, int tile, bool opaque_drawn,
+                                 WorkerScratch& s) {
+    const raster::TileRect rect = grid.rect(tile);
+    if (!opaque_drawn) {  // the opaque depth may be another tile's, or none was cleared
+        if (scene.msaa > 1) s.samples.reset(grid.tile_size);
+        else s.raster.reset(grid.tile_size);
+        image::fill_background(rect, clear, s.blend_radiance);
+    }
+    raster::BlendFragments& fragments = s.blend_fragments;
+    const auto shade_and_blend = [&] {
+        const std::size_t count = shade::gather_surface_points(
+            fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
+        shade_tile(scene, count, s);
+        image::blend_over(fragments, count, s.fragments.outputs(), s.fragments.channel(shade::FragmentBuffer::alpha),
+                          s.blend_radiance);
+        fragments.clear();
+    };
+    fragments.clear();
+    for (const std::uint32_t c : blend_chunks) {
+        const render::Chunk& chunk = chunks[c];
+        for (const std::uint32_t index : chunk.bins.tile(tile)) {
+            const raster::RasterTriangle& t = chunk.assembled.triangles[index];
+            if (fragments.count() + raster::max_blend_fragments(t, rect) > fragments.capacity) shade_and_blend();
+            const std::uint32_t id = (c << render::kChunkIdShift) | index;
+            if (scene.msaa > 1) raster::rasterize_blended(t, id, rect, s.samples, fragments, s.counters);
+            else raster::rasterize_blended(t, id, rect, s.raster, fragments, s.counters);
+        }
+    }
+    if (fragments.count() > 0) shade_and_blend();
+    image::resolve_blended_tile(s.blend_radiance, rect, isa, image);
 }
 
 // Textures, lights and emission for the `count` gathered fragments; their

@@ -45,6 +45,7 @@ void make_flat_normals(Mesh& mesh, std::vector<std::uint32_t>& sources) {
     unweld(mesh.positions);
     unweld(mesh.uvs);
     unweld(mesh.tangents);
+    unweld(mesh.colors);
     mesh.normals.resize(mesh.positions.size());
     for (std::size_t t = 0; t + 2 < mesh.positions.size(); t += 3) {
         const glm::vec3 n = glm::cross(mesh.positions[t + 1] - mesh.positions[t], mesh.positions[t + 2] - mesh.positions[t]);
@@ -85,6 +86,43 @@ AttributeRules attribute_rules(const tinygltf::Model& model) {
             {TINYGLTF_TYPE_VEC3, {f32}, false, false, note},
             {TINYGLTF_TYPE_VEC4, {f32}, false, false, note},
             {TINYGLTF_TYPE_VEC2, {f32, u8, u16}, true, false, note}};
+}
+
+// COLOR_0: VEC3 (alpha 1) or VEC4 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT,
+// read through the same checked accessor readers as every attribute. Floats are
+// clamped to [0, 1] (an exporter's 1.0000001 should not refuse a model); NaN and
+// infinities are refused.
+void read_colors(const tinygltf::Model& model, const AccessorReader& reader, int accessor, const std::string& source,
+                 const std::string& label, Mesh& mesh) {
+    const std::string what = label + " COLOR_0";
+    int type = TINYGLTF_TYPE_VEC4;
+    if (accessor >= 0 && std::size_t(accessor) < model.accessors.size()) {
+        type = model.accessors[std::size_t(accessor)].type;
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            fail(source, what + " (accessor " + std::to_string(accessor) + ") is " + type_name(type) +
+                             ", expected VEC3 or VEC4");
+    }
+    const AccessorRule rule{type,
+                            {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                            true};
+    const CheckedAccessor checked = reader.check(accessor, what, rule);
+    if (type == TINYGLTF_TYPE_VEC3) {
+        const std::vector<glm::vec3> rgb = read_vectors<3>(checked);
+        mesh.colors.resize(rgb.size());
+        for (std::size_t i = 0; i < rgb.size(); ++i) mesh.colors[i] = glm::vec4(rgb[i], 1.0f);
+    } else {
+        mesh.colors = read_vectors<4>(checked);
+    }
+    for (std::size_t i = 0; i < mesh.colors.size(); ++i) {
+        glm::vec4& color = mesh.colors[i];
+        for (int k = 0; k < 4; ++k) {
+            if (!std::isfinite(color[k]))
+                fail(source, what + " (accessor " + std::to_string(accessor) + ") element " + std::to_string(i) +
+                                 " is not finite; expected colours in [0, 1]");
+            color[k] = std::clamp(color[k], 0.0f, 1.0f);
+        }
+    }
 }
 
 }  // namespace
@@ -128,6 +166,8 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
         mesh.tangents = read_vectors<4>(reader.check(t, label + " TANGENT", rules.tangent));
         check_count(mesh.tangents.size(), "TANGENT");
     }
+    if (const int c = attribute(primitive, "COLOR_0"); c >= 0) read_colors(model, reader, c, source, label, mesh);
+    if (!mesh.colors.empty()) check_count(mesh.colors.size(), "COLOR_0");
 
     std::vector<std::uint32_t> vertices;  // in primitive order, before strips and fans become lists
     if (primitive.indices >= 0) {

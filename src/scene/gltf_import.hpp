@@ -12,7 +12,9 @@
 //   lists). POINTS and LINE* are not surfaces: skipped and counted
 //   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
 //   POSITION (required), NORMAL and TANGENT as float, TEXCOORD_n (the set the
-//   material's maps read) as float or normalized u8/u16; with
+//   material's maps read) as float or normalized u8/u16, COLOR_0 (VEC3/VEC4,
+//   float or normalized u8/u16, into Mesh::colors: it multiplies the base
+//   colour and its alpha; floats clamped to [0, 1], NaN refused); with
 //   KHR_mesh_quantization in extensionsUsed also the extension's types
 //   (positions and uvs: 8/16-bit integers, normalized or not; normals and
 //   tangents: normalized i8/i16). Without NORMAL the primitive gets
@@ -31,9 +33,10 @@
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
 //   emissiveFactor × emissiveTexture (sRGB), × KHR_materials_emissive_strength.
 //   doubleSided false (the default) culls back faces (Material::double_sided).
-//   alphaMode MASK: alpha = baseColorFactor[3] × baseColorTexture's alpha; a
-//   fragment below alphaCutoff is discarded (Material::alpha_mode). BLEND is
-//   drawn as OPAQUE, with a warning. Other material
+//   alphaMode MASK: alpha = baseColorFactor[3] × baseColorTexture's alpha × COLOR_0's
+//   alpha; a fragment below alphaCutoff is discarded (Material::alpha_mode). BLEND:
+//   that alpha composites the primitive over what lies behind it, drawn after the
+//   opaque ones, back to front (AlphaMode::blend, src/image/blend.hpp). Other material
 //   extensions (transmission, specular-glossiness, ...) are ignored. A primitive
 //   without a material gets glTF's default (white, metallic 1, roughness 1).
 // - Textures: one Texture per (image, colour space), only for images materials

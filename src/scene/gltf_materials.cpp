@@ -32,7 +32,7 @@ float unit_factor(double value, const std::string& what, const std::string& sour
 
 // alphaMode, alphaCutoff and the base colour's alpha factor.
 void read_alpha(const tinygltf::Material& m, const tinygltf::PbrMetallicRoughness& pbr, const std::string& label,
-                const std::string& source, Material& material, std::vector<std::string>& warnings) {
+                const std::string& source, Material& material) {
     const double alpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
     if (!(alpha >= 0.0 && alpha <= 1.0))
         fail(source, label + " baseColorFactor alpha is " + std::to_string(alpha) + ", expected a number in [0, 1]");
@@ -43,8 +43,7 @@ void read_alpha(const tinygltf::Material& m, const tinygltf::PbrMetallicRoughnes
         material.alpha_mode = AlphaMode::mask;
         material.alpha_cutoff = float(m.alphaCutoff);
     } else if (m.alphaMode == "BLEND") {
-        const std::string warning = "alphaMode BLEND is not supported; drawn as OPAQUE";
-        if (std::find(warnings.begin(), warnings.end(), warning) == warnings.end()) warnings.push_back(warning);
+        material.alpha_mode = AlphaMode::blend;  // alphaCutoff is ignored, as glTF says
     } else if (m.alphaMode != "OPAQUE") {
         fail(source, label + " alphaMode is " + quoted(m.alphaMode) + ", expected OPAQUE, MASK or BLEND");
     }
@@ -77,7 +76,7 @@ glm::vec3 color_factor(const std::vector<double>& values, std::size_t expected_s
 }
 
 Material read_material(const tinygltf::Model& model, std::size_t index, const std::string& source,
-                       const TextureSlotMaker& texture_slot, std::vector<std::string>& warnings) {
+                       const TextureSlotMaker& texture_slot, [[maybe_unused]] std::vector<std::string>& warnings) {
     const tinygltf::Material& m = model.materials[index];
     const std::string label = indexed("materials", index, m.name);
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
@@ -112,7 +111,7 @@ Material read_material(const tinygltf::Model& model, std::size_t index, const st
         fail(source, label + ": occlusion strength and normal scale must be finite");
     material.emissive_map = texture_slot(m.emissiveTexture.index, ColorSpace::srgb, label + " emissiveTexture");
     material.double_sided = m.doubleSided;  // glTF's default is false: back faces culled
-    read_alpha(m, pbr, label, source, material, warnings);
+    read_alpha(m, pbr, label, source, material);
     return material;
 }
 

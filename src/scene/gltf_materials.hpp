@@ -26,7 +26,7 @@ using TextureSlotMaker = std::function<TextureSlot(int texture_index, texture::C
 Material default_material();
 
 // materials[index] of the model; warnings gets one line for what is drawn
-// differently from the file's intent (alphaMode BLEND, once per file).
+// differently from the file's intent.
 Material read_material(const tinygltf::Model& model, std::size_t index, const std::string& source,
                        const TextureSlotMaker& texture_slot, std::vector<std::string>& warnings);
 

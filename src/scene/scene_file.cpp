@@ -54,7 +54,9 @@
 //                                   # under a mirroring transform) are culled, as glTF's doubleSided
 //   alpha_mode = "opaque"           # "mask": fragments whose alpha (alpha × albedo_map's alpha)
 //   alpha = 1.0                     #   is below alpha_cutoff are discarded (glTF's MASK); [0, 1]
-//   alpha_cutoff = 0.5              #   >= 0
+//   alpha_cutoff = 0.5              #   >= 0 (mask only)
+//                                   # "blend": drawn after the opaque objects, back to front, composited
+//                                   #   over them with that alpha (glTF's BLEND; src/image/blend.hpp)
 //
 //   [[objects]]                     # any number, including none
 //   mesh = "sphere"                 # required: "sphere" | "plane" | "cube"
@@ -554,8 +556,10 @@ private:
             const std::string text = read_string(*n, child(name, "alpha_mode"));
             if (text == "mask") {
                 material.alpha_mode = AlphaMode::mask;
+            } else if (text == "blend") {
+                material.alpha_mode = AlphaMode::blend;
             } else if (text != "opaque") {
-                fail_at(n->source(), "expected 'opaque' or 'mask' for '" + child(name, "alpha_mode") + "', got '" +
+                fail_at(n->source(), "expected 'opaque', 'mask' or 'blend' for '" + child(name, "alpha_mode") + "', got '" +
                                          text + "'");
             }
         }

@@ -126,6 +126,14 @@ void validate_meshes(const Scene& scene) {
         if (!mesh.tangents.empty() && mesh.tangents.size() != vertices) {
             fail(scene, mesh_label(scene, m), " has ", mesh.tangents.size(), " tangents for ", vertices, " positions");
         }
+        if (!mesh.colors.empty() && mesh.colors.size() != vertices) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.colors.size(), " colours for ", vertices, " positions");
+        }
+        for (std::size_t v = 0; v < mesh.colors.size(); ++v) {
+            const glm::vec4& c = mesh.colors[v];
+            if (!(in_unit_interval(c.r) && in_unit_interval(c.g) && in_unit_interval(c.b) && in_unit_interval(c.a)))
+                fail(scene, mesh_label(scene, m), " colour ", v, " is outside [0, 1]");
+        }
         if (mesh.indices.size() % 3 != 0) {
             fail(scene, mesh_label(scene, m), " has ", mesh.indices.size(),
                  " indices, not a multiple of 3 (three per triangle)");

@@ -8,11 +8,16 @@ float fragment_alpha(const AlphaMaskTriangle& triangle, int x, int y, float lamb
     const TriangleCorners& c = triangle.corners;
     const Material& material = *c.material;
     float alpha = material.alpha_factor;
-    if (!material.albedo_map.present()) return alpha;
+    if (!material.albedo_map.present() && !c.color[0]) return alpha;
     const std::array<float, 3> inv_w{1.0f / c.corner[0]->clip_pos.w, 1.0f / c.corner[1]->clip_pos.w,
                                      1.0f / c.corner[2]->clip_pos.w};
-    const glm::vec2 uv0 = c.corner[0]->uv, uv_d1 = c.corner[1]->uv - uv0, uv_d2 = c.corner[2]->uv - uv0;
     const auto [b1, b2] = raster::perspective_barycentrics(inv_w, lambda1, lambda2);
+    if (c.color[0]) {  // as SurfaceGather interpolates it
+        const float a0 = c.color[0]->a;
+        alpha *= a0 + b1 * (c.color[1]->a - a0) + b2 * (c.color[2]->a - a0);
+    }
+    if (!material.albedo_map.present()) return alpha;
+    const glm::vec2 uv0 = c.corner[0]->uv, uv_d1 = c.corner[1]->uv - uv0, uv_d2 = c.corner[2]->uv - uv0;
     const glm::vec2 uv = uv0 + b1 * uv_d1 + b2 * uv_d2;
     // The quad partners, as SurfaceGather::add finds them (tile origins are even,
     // so image and tile pixels have the same parity).

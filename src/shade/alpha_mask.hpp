@@ -2,7 +2,8 @@
 // run by the rasterizer on each fragment that passes the depth test
 // (raster::FragmentTest), so a discarded fragment never reaches the depth
 // buffer and the surface behind it shows, as a GPU's `discard` does.
-// Alpha is Material::alpha_factor × the albedo map's alpha, sampled as the
+// Alpha is Material::alpha_factor × the vertex colour's alpha (where the mesh
+// has colours) × the albedo map's alpha, sampled as the
 // material pass samples the map: at the perspective-correct uv, trilinear,
 // level of detail from the 2×2 quad's derivatives (surface_gather.hpp).
 #pragma once

@@ -167,15 +167,23 @@ void apply_run(simd::Isa isa, std::span<const std::shared_ptr<const texture::Tex
     }
     // Last: the power changes the sampled values in place.
     if (m.albedo_map.present()) {
-        sampler.sample(m.albedo_map, 2);
+        const bool blended = m.alpha_mode == AlphaMode::blend;
+        sampler.sample(m.albedo_map, blended ? 3 : 2);
         float* texel[] = {sampler.channel(0), sampler.channel(1), sampler.channel(2)};
         if (m.albedo_decode == AlbedoDecode::pow_2_2_after_filter) {
             pow_2_2(isa, n, texel[0], texel[1], texel[2]);
             sampler.forget();
         }
+        // The gathered albedo is the factor (× the vertex colour): for meshes
+        // without colours, factor × texel exactly as before.
         for (int c = 0; c < 3; ++c) {
             float* dst = out(C::Channel(C::albedo_r + c));
-            for (std::size_t i = 0; i < n; ++i) dst[i] = m.albedo[c] * texel[c][i];
+            for (std::size_t i = 0; i < n; ++i) dst[i] *= texel[c][i];
+        }
+        if (blended) {
+            const float* texel_alpha = sampler.channel(3);
+            float* alpha = out(C::alpha);
+            for (std::size_t i = 0; i < n; ++i) alpha[i] *= texel_alpha[i];
         }
     }
 }

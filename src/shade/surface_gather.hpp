@@ -31,6 +31,9 @@ public:
         dpdy_x, dpdy_y, dpdy_z,        // dFdy(WorldPos)
         tangent_x, tangent_y, tangent_z, tangent_w,  // stored world-space tangent; w = 0: none, derive from derivatives
         emissive_r, emissive_g, emissive_b,
+        // Blended materials only (AlphaMode::blend): alpha_factor × vertex colour alpha,
+        // × the albedo map's alpha after the material pass.
+        alpha,
         kChannels
     };
 
@@ -70,6 +73,9 @@ struct TriangleCorners {
     // pixel position: their change per pixel right and per pixel down.
     float lambda1_dx = 0, lambda1_dy = 0, lambda2_dx = 0, lambda2_dy = 0;
     const glm::vec4* tangent[3] = {nullptr, nullptr, nullptr};  // world-space tangents where the mesh has them
+    // Linear RGBA vertex colours (Mesh::colors) where the mesh has them; they
+    // multiply the albedo (and alpha), interpolated perspective-correctly.
+    const glm::vec4* color[3] = {nullptr, nullptr, nullptr};
 };
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`,
@@ -107,11 +113,14 @@ public:
 
     // Gathers one fragment of triangle `id` at tile pixel (x, y) with screen-space barycentrics λ1 λ2.
     [[gnu::always_inline]] void add(int x, int y, std::uint32_t id, float lambda1, float lambda2) {
-        using C = FragmentBuffer;
         if (id != cached_id_) {
             cached_id_ = id;
             c_ = lookup_(id);
             textured_ = c_.material->has_maps();
+            // Vertex colours and blended alpha ride on the textured branch: other
+            // triangles keep exactly one test per fragment.
+            colored_or_blended_ = c_.color[0] != nullptr || c_.material->alpha_mode == AlphaMode::blend;
+            beyond_plain_ = textured_ || colored_or_blended_;
             // As the viewport transform computed it (ScreenVertex::inv_w).
             for (int k = 0; k < 3; ++k) inv_w_[k] = 1.0f / c_.corner[k]->clip_pos.w;
             world0_ = c_.corner[0]->world_pos;
@@ -128,6 +137,14 @@ public:
         const auto [b1, b2] = raster::perspective_barycentrics(inv_w_, lambda1, lambda2);
         const glm::vec3 world = world0_ + b1 * world_d1_ + b2 * world_d2_;
         out_.set(count_, world, normal0_ + b1 * normal_d1_ + b2 * normal_d2_, *c_.material);
+        if (beyond_plain_) add_maps_colors_alpha(x, y, lambda1, lambda2, b1, b2);
+        ++count_;
+    }
+
+    // The textured materials' inputs, vertex colours, blended alpha.
+    void add_maps_colors_alpha(int x, int y, float lambda1, float lambda2, float b1, float b2) {
+        using C = FragmentBuffer;
+        if (colored_or_blended_) add_color_and_alpha(b1, b2);
         if (textured_) {
             const glm::vec2 uv = uv0_ + b1 * uv_d1_ + b2 * uv_d2_;
             // The quad partners: the pixel beside this one in the quad's row and in its column.
@@ -153,7 +170,19 @@ public:
             }
             for (int k = 0; k < 4; ++k) out_.channel(C::Channel(C::tangent_x + k))[count_] = tangent[k];
         }
-        ++count_;
+    }
+
+    // Vertex colours multiply the gathered albedo; blended materials get their alpha.
+    void add_color_and_alpha(float b1, float b2) {
+        using C = FragmentBuffer;
+        float alpha = c_.material->alpha_factor;
+        if (c_.color[0]) {
+            const glm::vec4 color0 = *c_.color[0];
+            const glm::vec4 color = color0 + b1 * (*c_.color[1] - color0) + b2 * (*c_.color[2] - color0);
+            for (int k = 0; k < 3; ++k) out_.channel(C::Channel(C::albedo_r + k))[count_] *= color[k];
+            alpha *= color.a;
+        }
+        if (c_.material->alpha_mode == AlphaMode::blend) out_.channel(C::alpha)[count_] = alpha;
     }
 
     std::size_t finish() {
@@ -169,7 +198,7 @@ private:
     std::size_t count_ = 0;
     std::uint32_t cached_id_ = raster::kNoTriangle;
     TriangleCorners c_{};
-    bool textured_ = false;
+    bool textured_ = false, colored_or_blended_ = false, beyond_plain_ = false;
     std::array<float, 3> inv_w_{};
     glm::vec3 world0_{}, world_d1_{}, world_d2_{}, normal0_{}, normal_d1_{}, normal_d2_{};
     glm::vec2 uv0_{}, uv_d1_{}, uv_d2_{};

@@ -76,7 +76,7 @@ TEST_CASE("scene files: materials are double-sided unless double_sided = false")
     CHECK(scene.materials[scene.objects[1].material].double_sided);
 }
 
-TEST_CASE("glTF alphaMode: MASK with its cutoff and the base colour alpha; BLEND drawn opaque with a warning") {
+TEST_CASE("glTF alphaMode: MASK with its cutoff and the base colour alpha, BLEND with that alpha") {
     const std::string good = test::embedded_test_gltf();
     const GltfContent masked =
         import_text(test::replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "MASK", "alphaCutoff": 0.3,)"));
@@ -88,9 +88,9 @@ TEST_CASE("glTF alphaMode: MASK with its cutoff and the base colour alpha; BLEND
     CHECK(default_cutoff.materials[0].alpha_cutoff == 0.5f);
     CHECK(default_cutoff.materials[1].alpha_mode == AlphaMode::opaque);  // glTF's default material
     const GltfContent blended = import_text(good);
-    CHECK(blended.materials[0].alpha_mode == AlphaMode::opaque);
-    REQUIRE(blended.warnings.size() == 1);
-    CHECK(blended.warnings[0] == "alphaMode BLEND is not supported; drawn as OPAQUE");
+    CHECK(blended.materials[0].alpha_mode == AlphaMode::blend);
+    CHECK(blended.materials[0].alpha_factor == 0.5f);
+    CHECK(blended.warnings.empty());
 
     CHECK(error_of(test::replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "MASK", "alphaCutoff": -0.5,)")) ==
           "bad.gltf: materials[0] 'painted' alphaCutoff is -0.500000, expected a finite number >= 0");
