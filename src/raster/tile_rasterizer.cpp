@@ -185,11 +185,13 @@ void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide
 }
 
 // Whether every corner lies within kTinySpan of the others in x and in y.
+// Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare.
 [[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
-    const auto span = [](const std::array<std::int32_t, 3>& v) {
-        return std::max({v[0], v[1], v[2]}) - std::min({v[0], v[1], v[2]});
+    const auto near = [](std::int32_t a, std::int32_t b) {
+        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
     };
-    return span(t.x) < kTinySpan && span(t.y) < kTinySpan;
+    return near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+           near(t.y[1], t.y[2]) & near(t.y[2], t.y[0]);
 }
 
 [[gnu::always_inline]] inline
