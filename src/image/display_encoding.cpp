@@ -5,9 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <glm/glm.hpp>
-
-#include "shade/pbr_reference.hpp"
 
 namespace tessera::image {
 
@@ -22,12 +19,16 @@ TESSERA_DECLARE_DISPLAY_KERNELS(avx2)
 TESSERA_DECLARE_DISPLAY_KERNELS(avx512)
 #undef TESSERA_DECLARE_DISPLAY_KERNELS
 
+// One channel of shade::display_from_radiance (tonemap_reinhard, then
+// gamma_encode: the same float operations), then quantized; the tests hold
+// them against the shader's functions.
 std::uint8_t unorm8_from_tonemapped_reference(float tonemapped) {
-    return quantize_unorm8(shade::gamma_encode(glm::vec3(tonemapped)).r);
+    const float inv_gamma = 1.0f / 2.2f;
+    return quantize_unorm8(std::pow(tonemapped, inv_gamma));
 }
 
 std::uint8_t unorm8_from_radiance_reference(float radiance) {
-    return quantize_unorm8(shade::display_from_radiance(glm::vec3(radiance)).r);
+    return unorm8_from_tonemapped_reference(radiance / (radiance + 1.0f));
 }
 
 namespace {

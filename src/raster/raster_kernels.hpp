@@ -49,9 +49,35 @@ struct TileView {
     int side;
 };
 
+// Boxes at most this many pixels wide take the stamp kernel: a vector covers
+// kStampWidth × (lanes / kStampWidth) pixels of the box, several rows at once.
+inline constexpr int kStampWidth = 4;
+
+// A tiny triangle: every corner within kTinySpan of the others in x and in y
+// (16 px). Its edge values at the pixel centres of its box are below 2^26, so
+// the kernel sets it up in int32 by itself, from the record, with no int64
+// edge steppers: what most triangles of a finely tessellated mesh need.
+inline constexpr std::int32_t kTinySpan = 16 * 256;
+
+// The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
+struct TinyBox {
+    int x_begin, x_end, y_begin, y_end;
+    int tile_x0, tile_y0;
+};
+
+// rasterize_block: one EdgeBlock32 a row of pixels at a time (vectors along the row).
+// rasterize_stamp: a block at most kStampWidth pixels wide (any height), every
+// edge value in int32 (down to a stamp's height below the block), as 4-wide
+// stamps of rows: 1 row per SSE vector, 2 per AVX2, 4 per AVX-512 (a 4×4 box
+// in one operation). Not fully_covered, no wide weights.
+// rasterize_tiny: the same for a tiny triangle's box (at most kStampWidth wide),
+// edge setup included.
 #define TESSERA_DECLARE_RASTER_KERNEL(suffix) \
     void rasterize_block_##suffix(const EdgeBlock32& block, const WideWeights* wide, const TileView& tile, \
-                                  RasterCounters& counters);
+                                  RasterCounters& counters); \
+    void rasterize_stamp_##suffix(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters); \
+    void rasterize_tiny_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box, \
+                                 const TileView& tile, RasterCounters& counters);
 TESSERA_DECLARE_RASTER_KERNEL(sse4)
 TESSERA_DECLARE_RASTER_KERNEL(avx2)
 TESSERA_DECLARE_RASTER_KERNEL(avx512)

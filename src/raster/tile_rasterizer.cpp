@@ -62,6 +62,19 @@ inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2)
            edge_fits_int32(p.e2, width, height);
 }
 
+// Whether the stamp kernel's edge values fit in int32: its lanes reach
+// kStampWidth - 1 pixels right of the box's first column and, after the last
+// stamp, up to kMaxRasterLanes / kStampWidth rows below the box.
+[[gnu::always_inline]] inline bool stamp_fits_int32(const TriangleInTile& p) {
+    const int reach_down = p.y_end - p.y_begin + kMaxRasterLanes / kStampWidth;
+    for (const EdgeStepper* e : {&p.e0, &p.e1, &p.e2}) {
+        const std::int64_t reach = std::llabs(e->row) + std::llabs(e->step_x) * (kStampWidth - 1) +
+                                   std::llabs(e->step_y) * reach_down;
+        if (reach >= (std::int64_t(1) << 31) - 1) return false;
+    }
+    return true;
+}
+
 // The part [x_begin, x_end) × [y_begin, y_end) of a placed triangle's block,
 // its edges stepped to that part's first pixel centre.
 TriangleInTile sub_block(const TriangleInTile& p, int x_begin, int x_end, int y_begin, int y_end) {
@@ -171,6 +184,50 @@ void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide
     }
 }
 
+// Whether every corner lies within kTinySpan of the others in x and in y.
+// Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare.
+[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
+    const auto near = [](std::int32_t a, std::int32_t b) {
+        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
+    };
+    return near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+           near(t.y[1], t.y[2]) & near(t.y[2], t.y[0]);
+}
+
+[[gnu::always_inline]] inline
+void rasterize_tiny(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                    TileBuffers& buffers, RasterCounters& counters) {
+    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
+                        buffers.side};
+    switch (isa) {
+        case simd::Isa::sse4: return rasterize_tiny_sse4(t, triangle_id, box, view, counters);
+        case simd::Isa::avx2: return rasterize_tiny_avx2(t, triangle_id, box, view, counters);
+        case simd::Isa::avx512: return rasterize_tiny_avx512(t, triangle_id, box, view, counters);
+        case simd::Isa::scalar: break;
+    }
+}
+
+// A box at most kStampWidth wide whose edge values fit in int32 (stamp_fits_int32).
+[[gnu::always_inline]] inline
+void rasterize_stamp(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
+                     const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+    EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
+    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    for (int k = 0; k < 3; ++k) {
+        block.row[k] = std::int32_t(e[k]->row);
+        block.step_x[k] = std::int32_t(e[k]->step_x);
+        block.step_y[k] = std::int32_t(e[k]->step_y);
+    }
+    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
+                        buffers.side};
+    switch (isa) {
+        case simd::Isa::sse4: return rasterize_stamp_sse4(block, view, counters);
+        case simd::Isa::avx2: return rasterize_stamp_avx2(block, view, counters);
+        case simd::Isa::avx512: return rasterize_stamp_avx512(block, view, counters);
+        case simd::Isa::scalar: break;
+    }
+}
+
 // Block p with every edge value in int32 (fits_int32(p)). Inlined: the
 // whole-box path of medium triangles pays for every call (raster/*/medium).
 [[gnu::always_inline]] inline
@@ -264,16 +321,21 @@ void rasterize_run(simd::Isa isa, const RasterTriangle& t, const TriangleInTile&
 
 }  // namespace
 
-void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
-                        TileBuffers& buffers, RasterCounters& counters) {
+namespace {
+
+// Everything but tiny triangles: out of line, so that the tiny path, most
+// calls for a finely tessellated mesh, pays for no more than it uses.
+[[gnu::noinline]] void rasterize_general(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id,
+                                         const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
     const auto placed = place_in_tile(t, tile);
     if (!placed) return;
-    // Blocks narrower than this are quicker one pixel at a time (most
-    // triangles of a finely tessellated mesh).
-    constexpr int kMinSimdWidth = 4;
+    if (isa == simd::Isa::scalar) return rasterize_scalar(t, *placed, triangle_id, tile, buffers, counters);
     const int width = placed->x_end - placed->x_begin, height = placed->y_end - placed->y_begin;
-    if (isa == simd::Isa::scalar || width < kMinSimdWidth)
+    // Other narrow boxes as stamps too, or one pixel at a time when their edge values leave int32.
+    if (width <= kStampWidth) {
+        if (stamp_fits_int32(*placed)) return rasterize_stamp(isa, t, *placed, triangle_id, tile, buffers, counters);
         return rasterize_scalar(t, *placed, triangle_id, tile, buffers, counters);
+    }
     // Boxes whose edge values leave int32 as a whole take the hierarchy: per
     // block they mostly fit, or need only their weights in double. Others take
     // it when over four vectors wide: below that (with AVX-512, up to 64 px,
@@ -284,6 +346,23 @@ void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t tr
     if (!big_box && fits_int32(*placed))
         return rasterize_int32(isa, t, *placed, false, triangle_id, tile, buffers, counters);
     rasterize_hierarchical(isa, t, *placed, triangle_id, tile, buffers, counters);
+}
+
+}  // namespace
+
+void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                        TileBuffers& buffers, RasterCounters& counters) {
+    // Tiny triangles (most of a finely tessellated mesh) straight to the stamp
+    // kernel, which sets their edges up in int32 itself.
+    if (isa != simd::Isa::scalar) {
+        const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
+        const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
+        if (x_begin >= x_end || y_begin >= y_end) return;
+        if (x_end - x_begin <= kStampWidth && tiny(t))
+            return rasterize_tiny(isa, t, triangle_id, {x_begin, x_end, y_begin, y_end, tile.x0, tile.y0}, buffers,
+                                  counters);
+    }
+    rasterize_general(isa, t, triangle_id, tile, buffers, counters);
 }
 
 }  // namespace tessera::raster

@@ -1,11 +1,13 @@
 // The rasterizer's inner loop over vectors of pixel centres (raster_kernels.hpp),
 // compiled once per ISA. Same arithmetic as the scalar loop in
 // tile_rasterizer.cpp, lane by lane, so both give bit-identical buffers.
+#include <bit>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
 
 #include "raster/raster_kernels.hpp"
+#include "raster/raster_limits.hpp"
 
 namespace tessera::raster {
 namespace {
@@ -108,7 +110,172 @@ void rasterize_block(const EdgeBlock32& b, const WideWeights* wide, const TileVi
     counters.depth_passed += std::uint64_t(xsimd::hadd(passed_lanes));
 }
 
+
+// The stamp: lane i is pixel (i % 4, i / 4) of a 4-wide group of kStampRows rows.
+constexpr int kStampRows = int(Int::size) / kStampWidth;
+static_assert(kStampRows * kStampWidth == int(Int::size));
+
+// Which lanes of a comparison hold: bit i for lane i. Hand-written: xsimd 8.1
+// has no movemask.
+[[gnu::always_inline]] inline unsigned lane_bits(const xsimd::batch_bool<std::int32_t, Arch>& b) {
+#if XSIMD_WITH_AVX512F
+    return unsigned(b.data);
+#elif XSIMD_WITH_AVX2
+    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(b)));
+#else
+    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(b)));
+#endif
+}
+
+// 4 int32 from each of kStampRows rows (row r at base + offset[r]) into one
+// vector, and back. Hand-written: xsimd 8.1 loads and stores whole vectors only.
+[[gnu::always_inline]] inline Int load_rows(const std::int32_t* base, const std::size_t* offset) {
+#if XSIMD_WITH_AVX512F
+    const __m512i low = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[0])));
+    const __m512i two = _mm512_inserti32x4(low, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[1])), 1);
+    const __m512i three = _mm512_inserti32x4(two, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[2])), 2);
+    return _mm512_inserti32x4(three, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[3])), 3);
+#elif XSIMD_WITH_AVX2
+    return _mm256_loadu2_m128i(reinterpret_cast<const __m128i*>(base + offset[1]),
+                               reinterpret_cast<const __m128i*>(base + offset[0]));
+#else
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[0]));
+#endif
+}
+// Rows past the box share row 0's offset (their lanes write back what was
+// read), so rows are stored last to first: row 0's own values land last.
+[[gnu::always_inline]] inline void store_rows(std::int32_t* base, const std::size_t* offset, const Int& v) {
+#if XSIMD_WITH_AVX512F
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[3]), _mm512_extracti32x4_epi32(v, 3));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[2]), _mm512_extracti32x4_epi32(v, 2));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm512_extracti32x4_epi32(v, 1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm512_castsi512_si128(v));
+#elif XSIMD_WITH_AVX2
+    // Not _mm256_storeu2_m128i: it stores the low half first.
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm256_extracti128_si256(v, 1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm256_castsi256_si128(v));
+#else
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), v);
+#endif
+}
+// The load + select + store of one tile array where `pass` holds.
+[[gnu::always_inline]] inline void update_rows(std::int32_t* base, const std::size_t* offset,
+                                               const xsimd::batch_bool<std::int32_t, Arch>& pass, const Int& v) {
+    store_rows(base, offset, xsimd::select(pass, v, load_rows(base, offset)));
+}
+
+// The lanes' pixel offsets from the stamp's first pixel centre, in fixed point.
+alignas(64) constexpr std::int32_t kStampDx[16] = {0, 256, 512, 768, 0, 256, 512, 768, 0, 256, 512, 768, 0, 256, 512, 768};
+alignas(64) constexpr std::int32_t kStampDy[16] = {0, 0, 0, 0, 256, 256, 256, 256, 512, 512, 512, 512, 768, 768, 768, 768};
+
+// A block's three edges over the lanes of its first stamp: the unbiased edge
+// values E (the barycentric numerators), their change from one stamp to the
+// next (kStampRows rows down), and the top-left rule as a threshold: a pixel
+// centre is inside edge k when E_k > threshold_k (-1 for top and left edges,
+// i.e. E >= 0; 0 for the others, E >= 1), as the scalar loop's E + bias >= 0.
+struct StampEdges {
+    Int e[3], down[3], threshold[3];
+};
+
+// A box at most kStampWidth wide (tile-relative pixels [x_begin, x_end) ×
+// [y_begin, y_end)), kStampRows rows per step, the same arithmetic per lane
+// as the scalar loop. A stamp's loads reach up to 3 pixels past the box's
+// right end (at most into the next row, or the tile buffers' padding), and
+// lanes outside the box write back what they read.
+[[gnu::always_inline]] inline void rasterize_stamps(StampEdges edges, int x_begin, int x_end, int y_begin, int y_end,
+                                                    float inv_area_value, float d0_value, float d10_value,
+                                                    float d20_value, std::uint32_t triangle_id, const TileView& tile,
+                                                    RasterCounters& counters) {
+    const Int lane = Int::load_aligned(kLaneIndex);
+    const Int ox = lane & Int(kStampWidth - 1), oy = lane >> 2;
+    const auto in_row = ox < Int(x_end - x_begin);
+    const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
+    unsigned fragments = 0, passed = 0;
+    for (int y = y_begin; y < y_end; y += kStampRows) {
+        const auto inside = (edges.e[0] > edges.threshold[0]) & (edges.e[1] > edges.threshold[1]) &
+                            (edges.e[2] > edges.threshold[2]) & in_row & (oy < Int(y_end - y));
+        const unsigned inside_bits = lane_bits(inside);
+        if (inside_bits != 0) {
+            // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
+            // (max(z, 0) gives 0 for -0 too, as the scalar z > 0 ? z : 0 does).
+            const Float lambda1 = xsimd::to_float(edges.e[1]) * inv_area;
+            const Float lambda2 = xsimd::to_float(edges.e[2]) * inv_area;
+            const Int new_depth = xsimd::bitwise_cast<Int>(xsimd::max(d0 + lambda1 * d10 + lambda2 * d20, zero));
+            std::size_t offset[kStampRows];
+            for (int r = 0; r < kStampRows; ++r)
+                offset[r] = std::size_t(y + r < y_end ? y + r : y) * tile.side + x_begin;
+            std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth);
+            const Int old_depth = load_rows(depth, offset);
+            // Depths in [0, 1] order like their bit patterns: LESS as an integer compare.
+            const auto pass = inside & (new_depth < old_depth);
+            fragments += unsigned(std::popcount(inside_bits));
+            const unsigned pass_bits = lane_bits(pass);
+            if (pass_bits != 0) {
+                passed += unsigned(std::popcount(pass_bits));
+                store_rows(depth, offset, xsimd::select(pass, new_depth, old_depth));
+                update_rows(reinterpret_cast<std::int32_t*>(tile.triangle), offset, pass,
+                            Int(std::int32_t(triangle_id)));
+                update_rows(reinterpret_cast<std::int32_t*>(tile.lambda1), offset, pass,
+                            xsimd::bitwise_cast<Int>(lambda1));
+                update_rows(reinterpret_cast<std::int32_t*>(tile.lambda2), offset, pass,
+                            xsimd::bitwise_cast<Int>(lambda2));
+            }
+        }
+        for (int k = 0; k < 3; ++k) edges.e[k] += edges.down[k];
+    }
+    counters.fragments += fragments;
+    counters.depth_passed += passed;
+}
+
+// A block in EdgeBlock32 form (biased rows and steps) as stamps.
+[[gnu::always_inline]] inline void rasterize_stamp(const EdgeBlock32& b, const TileView& tile,
+                                                   RasterCounters& counters) {
+    const Int lane = Int::load_aligned(kLaneIndex);
+    const Int ox = lane & Int(kStampWidth - 1), oy = lane >> 2;
+    StampEdges edges;
+    for (int k = 0; k < 3; ++k) {
+        edges.e[k] = Int(b.row[k] - b.bias[k]) + ox * Int(b.step_x[k]) + oy * Int(b.step_y[k]);
+        edges.down[k] = Int(kStampRows * b.step_y[k]);
+        edges.threshold[k] = Int(-1 - b.bias[k]);
+    }
+    rasterize_stamps(edges, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20, b.triangle_id,
+                     tile, counters);
+}
+
+// Edge k of a tiny triangle, from corner a to corner b, over the stamp's lanes
+// (pixel centres x, y): E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
+// edge_function(); exact in int32, as every value is below 2^26.
+[[gnu::always_inline]] inline void tiny_edge(const RasterTriangle& t, int k, int a, int b, const Int& x, const Int& y,
+                                             StampEdges& edges) {
+    const Int ax(t.x[a]), ay(t.y[a]);
+    const Int dx = Int(t.x[b]) - ax, dy = Int(t.y[b]) - ay;
+    edges.e[k] = dx * (y - ay) - dy * (x - ax);
+    edges.down[k] = dx * Int(kStampRows * 256);
+    // Top-left rule (EdgeStepper): a top edge (horizontal, interior below) or a left edge.
+    const auto top_left = (dy < Int(0)) | ((dy == Int(0)) & (dx > Int(0)));
+    edges.threshold[k] = xsimd::select(top_left, Int(-1), Int(0));
+}
+
 }  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                                        const TileView& tile, RasterCounters& counters) {
+    static_assert(kSubpixelScale == 256);
+    // The lanes' pixel centres, fixed point.
+    const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kStampDx);
+    const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kStampDy);
+    StampEdges edges;
+    tiny_edge(t, 0, 1, 2, x, y, edges);
+    tiny_edge(t, 1, 2, 0, x, y, edges);
+    tiny_edge(t, 2, 0, 1, x, y, edges);
+    rasterize_stamps(edges, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
+                     box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
+                     t.depth[2] - t.depth[0], triangle_id, tile, counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_stamp)(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters) {
+    rasterize_stamp(block, tile, counters);
+}
 
 void TESSERA_SIMD_ENTRY(rasterize_block)(const EdgeBlock32& block, const WideWeights* wide, const TileView& tile,
                                          RasterCounters& counters) {

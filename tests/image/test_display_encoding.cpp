@@ -89,14 +89,19 @@ std::vector<float> special_radiances() {
 }  // namespace
 
 TEST_CASE("the display encoding's reference is the shader's tonemap, gamma and quantization") {
+    std::vector<float> values = special_radiances();
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> exponent(-8.0f, 6.0f);
-    for (int i = 0; i < 2000; ++i) {
-        const float c = std::pow(10.0f, exponent(rng));
+    std::uniform_int_distribution<std::uint32_t> bits;
+    while (values.size() < 20000) values.push_back(std::pow(10.0f, exponent(rng))), values.push_back(std::bit_cast<float>(bits(rng)));
+    int mismatches = 0;
+    for (const float c : values) {
         const glm::vec3 display = shade::display_from_radiance(glm::vec3(c));
-        CHECK(image::unorm8_from_radiance_reference(c) == image::quantize_unorm8(display.r));
-        CHECK(image::unorm8_from_tonemapped_reference(c / (c + 1.0f)) == image::quantize_unorm8(display.r));
+        mismatches += image::unorm8_from_radiance_reference(c) != image::quantize_unorm8(display.r);
+        mismatches += image::unorm8_from_tonemapped_reference(shade::tonemap_reinhard(glm::vec3(c)).r) !=
+                      image::quantize_unorm8(display.r);
     }
+    CHECK(mismatches == 0);
 }
 
 // The table lookup against the reference for every float where the 8-bit
@@ -158,6 +163,7 @@ TEST_CASE("encode_display_unorm8 equals the reference for all 2^32 radiance bit 
         }
         std::uint64_t wrong = 0;
         for (Isa isa : isas) {
+            if (isa == Isa::scalar) continue;  // the reference itself
             r = radiance;
             image::encode_display_unorm8(isa, kBlock, r.data(), zero.data(), zero.data());
             for (std::uint64_t i = 0; i < kBlock; ++i) wrong += image::packed_unorm8(r[i]) != expected[i];

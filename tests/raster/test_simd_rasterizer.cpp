@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 
+#include "raster/raster_kernels.hpp"
 #include "raster_test_util.hpp"
 
 using namespace tessera;
@@ -165,5 +166,110 @@ TEST_CASE("block hierarchy: huge triangles, slivers and ties on block borders ma
             past_int32 += e0 > 0 && e1 > 0 && e2 > 0 && std::max(e1, e2) > (std::int64_t(1) << 31);
         }
         CHECK(past_int32 > 50);
+    }
+}
+
+namespace {
+
+// Triangle setup straight from fixed-point corners (24.8, image y down).
+std::optional<raster::RasterTriangle> fixed_triangle(std::array<glm::ivec2, 3> p, int image,
+                                                     const std::array<float, 3>& depth) {
+    std::array<raster::ScreenVertex, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = {p[k].x, p[k].y, depth[k], 1.0f};
+    return raster::setup_triangle({image, image}, corners, {0, 1, 2});
+}
+
+}  // namespace
+
+// Boxes at most 4 pixels wide go to the stamp kernel (4 × 1, 4 × 2 or 4 × 4
+// pixels per vector by ISA): its lanes past the box's right end and rows
+// past its bottom read and write back tile memory, so boxes at the tile's
+// right and bottom edges matter, as do edges through pixel centres (the
+// top-left rule decides), horizontal and vertical edges, tall slivers (many
+// stamps) and depth ties between triangles.
+TEST_CASE("tiny triangles: the stamp kernel matches the scalar loop, ties and tile borders included") {
+    std::mt19937 rng(4242);
+    std::uniform_int_distribution<int> subpixel(0, 255), coin(0, 3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int tile_side : {8, 16, 32, 64}) {
+        CAPTURE(tile_side);
+        const int image = 4 * tile_side, x0 = tile_side, y0 = 2 * tile_side;
+        const raster::TileRect tile{x0, y0, x0 + tile_side, y0 + tile_side};
+        std::uniform_int_distribution<int> pixel(x0 - 3, x0 + tile_side + 1);
+        std::vector<raster::RasterTriangle> triangles;
+        int narrow = 0;
+        for (int kind = 0; triangles.size() < 6000; ++kind) {
+            // An anchor pixel in or just outside the tile, often against its right or bottom edge.
+            glm::ivec2 anchor{pixel(rng), pixel(rng) + (y0 - x0)};
+            if (kind % 4 == 1) anchor.x = x0 + tile_side - 1 - coin(rng);
+            if (kind % 4 == 2) anchor.y = y0 + tile_side - 1 - coin(rng);
+            // Corners within a box up to 4 px wide and 1-12 px tall; on pixel centres
+            // (128 + 256 k) a third of the time, on pixel corners sometimes.
+            const int tall = kind % 5 == 0 ? 12 : 4;
+            std::uniform_int_distribution<int> dx(-256, 3 * 256), dy(-256, tall * 256 - 256);
+            auto corner = [&] {
+                glm::ivec2 p{anchor.x * 256 + dx(rng), anchor.y * 256 + dy(rng)};
+                if (kind % 3 == 0) p = p / 256 * 256 + 128;
+                else if (kind % 7 == 0) p = p / 256 * 256;
+                return p;
+            };
+            std::array<glm::ivec2, 3> p{corner(), corner(), corner()};
+            if (kind % 6 == 4) p[1].y = p[0].y;  // a horizontal edge (top or bottom)
+            if (kind % 6 == 5) p[1].x = p[0].x;  // a vertical edge (left or right)
+            // Depth: a plane, or one shared value so that later triangles tie with earlier ones.
+            const std::array<float, 3> depth =
+                kind % 4 == 3 ? std::array<float, 3>{0.5f, 0.5f, 0.5f} : std::array<float, 3>{unit(rng), unit(rng), unit(rng)};
+            const auto t = fixed_triangle(p, image, depth);
+            if (!t) continue;
+            triangles.push_back(*t);
+            narrow += t->px_max - t->px_min < raster::kStampWidth;
+        }
+        const raster::TileBuffers reference = check_isas_match_scalar(triangles, tile);
+        int covered = 0;
+        for (std::size_t p = 0; p < std::size_t(tile_side) * tile_side; ++p) covered += reference.covered(p);
+        CHECK(covered > tile_side * tile_side / 2);
+        CHECK(narrow > 4000);  // most of them take the stamp
+    }
+}
+
+// A mesh of tiny triangles as the demo's spheres make them (~1.3 px²): a
+// jittered grid of quads, two triangles each, every edge shared, so every
+// pixel centre on an edge belongs to exactly one of its two triangles.
+TEST_CASE("a mesh of tiny triangles sharing edges: every ISA matches the scalar loop") {
+    constexpr int kTile = 32, kImage = 128;
+    std::mt19937 rng(77);
+    std::uniform_int_distribution<int> jitter(-60, 60);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int pitch : {320, 384, 512}) {  // grid step in fixed point: 1.25, 1.5, 2 px
+        CAPTURE(pitch);
+        const int n = 40 * 256 / pitch;
+        std::vector<glm::ivec2> grid;
+        std::vector<float> depth;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                glm::ivec2 p{28 * 256 + i * pitch, 28 * 256 + j * pitch};
+                if ((i + j) % 3) p += glm::ivec2{jitter(rng), jitter(rng)};  // others stay on the grid: ties
+                grid.push_back(p);
+                depth.push_back(0.3f + 0.4f * unit(rng));
+            }
+        std::vector<raster::RasterTriangle> triangles;
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+                for (const auto& [u, v, w] : {std::array<int, 3>{a, b, d}, std::array<int, 3>{a, d, c}})
+                    if (auto t = fixed_triangle({grid[u], grid[v], grid[w]}, kImage, {depth[u], depth[v], depth[w]}))
+                        triangles.push_back(*t);
+            }
+        // A second layer behind and one in front of the first, crossing it at depth ties now and then.
+        const std::size_t layer = triangles.size();
+        for (std::size_t i = 0; i < layer; ++i) {
+            raster::RasterTriangle t = triangles[i];
+            for (float& z : t.depth) z = i % 2 ? z + 0.1f : 0.5f;
+            triangles.push_back(t);
+        }
+        const raster::TileBuffers reference = check_isas_match_scalar(triangles, {32, 32, 32 + kTile, 32 + kTile});
+        int covered = 0;
+        for (std::size_t p = 0; p < std::size_t(kTile) * kTile; ++p) covered += reference.covered(p);
+        CHECK(covered == kTile * kTile);  // the mesh is watertight over the tile
     }
 }
