@@ -6,6 +6,9 @@ find_package(tomlplusplus CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
+# Compressed glTF geometry: KHR_draco_mesh_compression and EXT_meshopt_compression.
+find_package(draco CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
 # doctest is found in tests/, only when the tests are built.
 
 # Debian's xsimd target links a library "xtl" that the package does not ship

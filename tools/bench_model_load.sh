@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Model load end to end: `tessera render MODEL -o x.png --threads N` for the
 # Khronos sample models in ../shared/assets (skipped, saying so, when absent),
-# with its wall time and peak RSS (GNU time), and the split `render --stats`
+# with its wall time, CPU time (user + system) and peak RSS (GNU time), and the split `render --stats`
 # prints: glTF file read, parse, convert, images (wall), and the images' decode,
 # upload (to the sampler's RGBA8 layout) and mip thread time, render, encode.
 # Also `tessera --version`: the process start (dynamic loading) every run pays.
@@ -9,7 +9,8 @@
 #   tools/bench_model_load.sh [MODEL.glb|.gltf ...]
 # Environment: RUNS, THREADS (default 2), BUILD_DIR (default build/, Release),
 # BASELINE=/path/to/another/tessera to measure it too, alternating run by run
-# with this build (both see the same machine noise; compare the ratio).
+# with this build (both see the same machine noise; compare the ratio). On a
+# shared machine CPU time and peak RSS move less with the load than wall time.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
@@ -40,7 +41,7 @@ trap 'rm -rf "$out"' EXIT
 run_once() {  # BINARY ARGS...
   local bin="$1"
   shift
-  /usr/bin/time -f "time %e %M" -o "$out/time" "$bin" "$@" >"$out/stdout" 2>"$out/stderr" || {
+  /usr/bin/time -f "time %e %M %U %S" -o "$out/time" "$bin" "$@" >"$out/stdout" 2>"$out/stderr" || {
     echo "bench_model_load: failed: $bin $*" >&2
     cat "$out/stderr" >&2
     exit 1
@@ -48,6 +49,7 @@ run_once() {  # BINARY ARGS...
   cat "$out/time" "$out/stdout"
 }
 
+echo "machine load at start: $(cut -d' ' -f1-3 /proc/loadavg)"
 for model in version "${models[@]}"; do
   for bin in "${binaries[@]}"; do : >"$out/$(echo "$bin" | md5sum | cut -c1-8).log"; done
   for run in $(seq 1 "$runs"); do
@@ -71,8 +73,9 @@ fields = {}
 def add(name, value):
     fields.setdefault(name, []).append(float(value))
 for r in runs:
-    m = re.search(r"time ([\d.]+) (\d+)", r)
+    m = re.search(r"time ([\d.]+) (\d+) ([\d.]+) ([\d.]+)", r)
     add("wall s", m.group(1)); add("peak RSS MB", int(m.group(2)) / 1024)
+    add("cpu s", float(m.group(3)) + float(m.group(4)))
     m = re.search(r"load ([\d.]+) ms \(glTF file read ([\d.]+), parse ([\d.]+), convert ([\d.]+), images ([\d.]+)\)", r)
     if m:
         for name, value in zip(["load", "file read", "parse", "convert", "images"], m.groups()):
@@ -88,7 +91,8 @@ for r in runs:
             add(name + ("" if name in ("textures", "texture MB") else " ms"), value)
 name = "tessera --version" if model == "version" else os.path.basename(model)
 med = {k: statistics.median(v) for k, v in fields.items()}
-line = f"{name} [{label}, median of {len(runs)}]: wall {med['wall s']:.3f} s, peak RSS {med['peak RSS MB']:.1f} MB"
+line = (f"{name} [{label}, median of {len(runs)}]: wall {med['wall s']:.3f} s, CPU {med['cpu s']:.2f} s, "
+        f"peak RSS {med['peak RSS MB']:.1f} MB")
 print(line)
 if "load ms" in med:
     print("    load {load ms:.1f} ms = file read {file read ms:.1f} + parse {parse ms:.1f} + convert {convert ms:.1f} "

@@ -61,9 +61,17 @@ log_dir="$(mkdir -p "${1:-$repo/build/fresh_machine}" && cd "${1:-$repo/build/fr
 shared="$repo/../shared"
 work="$(mktemp -d /var/tmp/tessera-fresh.XXXXXX)"
 mounted=()  # mount points, unmounted in reverse order on every exit path
+command_pid=""  # the quick-start command running in a root, in its own process group
 
 cleanup() {
   local i
+  # A command still running (we were stopped): end its whole process group before unmounting.
+  if [ -n "$command_pid" ]; then
+    kill -TERM -- "-$command_pid" 2>/dev/null || true
+    sleep 2
+    kill -KILL -- "-$command_pid" 2>/dev/null || true
+    wait "$command_pid" 2>/dev/null || true
+  fi
   for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
     umount -R "${mounted[i]}" 2>/dev/null || umount -R -l "${mounted[i]}" 2>/dev/null || true
   done
@@ -124,11 +132,17 @@ run_command() {
   local start end status
   echo "== [$order] $cmd ($(date +%T)), log: $log"
   start=$(date +%s.%N)
+  # In the background, in a process group of its own, and waited for: bash runs the INT/TERM
+  # trap during `wait` at once (it would only after a foreground child ended), and the
+  # cleanup can then end the command's every process before it unmounts.
   set +e
-  chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb \
+  setsid chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    /bin/bash -c "cd /work/tessera && $cmd" >"$log" 2>&1
+    /bin/bash -c "cd /work/tessera && $cmd" >"$log" 2>&1 </dev/null &
+  command_pid=$!
+  wait "$command_pid"
   status=$?
+  command_pid=""
   set -e
   end=$(date +%s.%N)
   local wall; wall=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.0f", b - a }')

@@ -8,6 +8,10 @@ packages=(
   g++ make cmake pkg-config
   libglm-dev libtbb-dev libopenimageio-dev libxsimd-dev libtomlplusplus-dev libcli11-dev
   libtinygltf-dev nlohmann-json3-dev
+  # Image I/O of tessera render without OpenImageIO: PNG, JPEG textures; PNG, EXR outputs.
+  libpng-dev libjpeg62-turbo-dev libopenexr-dev
+  # Compressed glTF geometry: KHR_draco_mesh_compression and EXT_meshopt_compression.
+  libdraco-dev libmeshoptimizer-dev
 )
 if [ "${1:-all}" != render ]; then
   packages+=(

@@ -6,6 +6,9 @@
 # name in scenes/. BUILD_DIR overrides the build folder (default build/, Release).
 # MSAA=1|4 overrides the scene's output.msaa in both (--msaa); unset, both use the
 # scene's own. With 4x, llvmpipe's frame includes its resolve blit, as Tessera's does.
+# CULL=1 draws every material single-sided in both (--cull-back-faces: Tessera culls back
+# faces in triangle setup, llvmpipe with GL_CULL_FACE); unset or 0, both use the scene's own
+# double_sided (all two-sided in the demo scenes, llvmpipe without GL_CULL_FACE).
 # The two alternate for several rounds (ROUNDS, default 3) so both see the same machine
 # noise; the result is the median over rounds of each one's median frame time, and
 # llvmpipe/tessera (above 1: Tessera is faster). Frame times exclude readback and file output.
@@ -17,6 +20,8 @@ msaa_args=()
 if [ -n "${MSAA:-}" ]; then
   case "$MSAA" in 1|4) msaa_args=(--msaa "$MSAA") ;; *) echo "race_llvmpipe: MSAA must be 1 or 4, not $MSAA" >&2; exit 1 ;; esac
 fi
+cull_args=()
+case "${CULL:-0}" in 0) ;; 1) cull_args=(--cull-back-faces) ;; *) echo "race_llvmpipe: CULL must be 0 or 1, not $CULL" >&2; exit 1 ;; esac
 
 # Builds if needed: configure once, then an incremental build of the two binaries.
 build_targets tessera tessera_gl_reference_cli
@@ -29,17 +34,17 @@ field() {  # field JSON NAME: one top-level number from a JSON object
   python3 -c 'import json, sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"
 }
 
-echo "race: $(basename "$scene") ${width}x${height}, msaa ${MSAA:-as the scene}, $threads threads, $frames frames, $rounds rounds"
+echo "race: $(basename "$scene") ${width}x${height}, msaa ${MSAA:-as the scene}, back faces ${cull_args[*]:-as the scene}, $threads threads, $frames frames, $rounds rounds"
 tessera_medians=()
 llvmpipe_medians=()
 for round in $(seq 1 "$rounds"); do
   t_json="$("$build/tessera" bench "$scene" --width "$width" --height "$height" --threads "$threads" \
-    --frames "$frames" "${msaa_args[@]}" --json)"
+    --frames "$frames" "${msaa_args[@]}" "${cull_args[@]}" --json)"
   # A high trim threshold stops glibc returning llvmpipe's large per-frame scene
   # allocations to the kernel each frame (which would time page faults, not rendering).
   g_json="$(LP_NUM_THREADS="$threads" GLIBC_TUNABLES=glibc.malloc.trim_threshold=1073741824 \
     "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" "${msaa_args[@]}" \
-    --json)"
+    "${cull_args[@]}" --json)"
   t_ms="$(field "$t_json" frame_ms_median)"
   g_ms="$(field "$g_json" frame_ms_median)"
   tessera_medians+=("$t_ms")

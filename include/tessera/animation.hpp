@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -92,5 +93,25 @@ void set_scene_frame(Scene& scene, int frame);
 
 // The number of frames: Animation::frame_count, or 1 for a still scene.
 int scene_frame_count(const Scene& scene);
+
+// set_scene_frame also poses each Scene::posed_models entry that plays an
+// animation, at start_seconds + speed · frame / fps seconds into it.
+
+// The CLI's --time: poses every glTF model of the scene with animations at
+// `seconds` into its animation (start_seconds + speed · seconds for a
+// [[models]] entry that chose one; else the one `animation_selector` names,
+// an index or a name; empty = the first). Models without animations keep
+// their rest pose; the rest of the scene is as loaded. Throws SceneError
+// "source: ..." for a time that is not a finite number >= 0, a selector no
+// model's animations match, or a scene whose models have no animation at all.
+void set_scene_time(Scene& scene, double seconds, const std::string& animation_selector = "");
+
+// The CLI's --frames on a glTF file alone: gives `scene` (make_gltf_scene's)
+// an Animation at `fps` frames per second that plays the file's animation the
+// selector names (as above): frames 0 .. round(duration · fps), so the last
+// frame shows the animation's end. The scene is put at frame 0. Returns false
+// (and changes nothing) for a file without animations and an empty selector;
+// throws SceneError for a selector matching none.
+bool play_gltf_animation(Scene& scene, const std::string& animation_selector = "", double fps = 24.0);
 
 }  // namespace tessera

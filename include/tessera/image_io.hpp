@@ -5,7 +5,7 @@
 //       each AOV plane the image has (RenderedImage::aov; values, spaces and
 //       background values documented at AovPlanes), named by the OpenEXR and
 //       OpenImageIO conventions:
-//         depth      Z                               float (ImageSpec::z_channel)
+//         depth      Z                               float (OpenImageIO reads it as ImageSpec::z_channel)
 //         normal     N.X N.Y N.Z                     float, world space, unit length
 //         albedo     albedo.R albedo.G albedo.B      half
 //         roughness  roughness                       half

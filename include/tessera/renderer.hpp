@@ -37,11 +37,12 @@ struct RenderSettings {
     // Fill RenderedImage::radiance (what EXR output needs). Without it a frame
     // writes only the 8-bit display image, as an OpenGL RGBA8 framebuffer would.
     bool keep_radiance = true;
-    // Per-tile light culling: a light with a range (Light::range) is shaded only
-    // in tiles whose visible points it reaches. Off, every light is shaded
-    // everywhere, as the reference shader does. Scenes without ranges give the
-    // same image, bit for bit, either way; with ranges, the culled image depends
-    // on the tile size (not on the thread count).
+    // Light ranges and culling: a light with a range (Light::range) adds nothing
+    // to a visible point farther away, and clustered culling (shade/light_culling.hpp)
+    // skips it per tile and per cluster of fragments where it reaches none.
+    // The image depends on neither the tile size nor the thread count. Off,
+    // every light is shaded everywhere, as the reference shader does. Scenes
+    // without ranges give the same image, bit for bit, either way.
     bool light_culling = true;
     // AOV planes to fill in RenderedImage::aov. None by default: a frame
     // without AOVs neither allocates nor writes them.
@@ -94,6 +95,7 @@ struct FrameStats {
     std::uint64_t triangles_binned = 0;      // left after clipping, culling and setup
     std::uint64_t fragments_rasterized = 0;  // pixel centres covered, over all triangles
     std::uint64_t fragments_shaded = 0;      // visible pixels, each shaded once
+    std::uint64_t fragment_lights = 0;       // Σ fragments × the lights looped over for them, after light culling
     // Wall-clock time of the frame's three passes, one after the other.
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
     double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk

@@ -18,6 +18,7 @@ namespace texture {
 class Texture;  // texture/texture.hpp: an image with its mip chain, loaded with the scene
 }
 struct Animation;  // tessera/animation.hpp: what changes from frame to frame
+struct GltfRig;    // src/scene/gltf_animation.hpp: a glTF file's nodes, skins, morph targets and animations
 
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
@@ -122,19 +123,21 @@ struct Light {
     // inside `inner`, none outside `outer`, the reference's clamp ramp of cos θ between.
     float inner_cone_degrees = 0.0f;
     float outer_cone_degrees = 45.0f;
-    // Distance past which this light may be left out of shading (per-tile light
-    // culling: a tile none of whose visible points lies within range skips it;
-    // points within range of a tile that is shaded get the light in full). A
-    // promise by the scene that the light adds next to nothing farther away.
-    // 0 = unlimited, never culled. Point and spot only.
+    // Distance past which this light adds nothing, a hard cut per visible point
+    // (with RenderSettings::light_culling, the default): a promise by the scene
+    // that the light adds next to nothing farther away, which lets light
+    // culling skip it wherever no point is within range. Points within range
+    // get the light in full. 0 = unlimited, never culled. Point and spot only.
     float range = 0.0f;
 };
 
 // The irradiance below which a light counts as negligible for range = "auto":
 // the range is where the light's brightest channel, color / d², falls to this.
 // Chosen by measurement on scenes/many_lights.toml (256 lights): at 1/256 the
-// many culled tails add up (most pixels 2+ steps off); at 1/4096 0.1% of the
-// 8-bit values differ by more than one step. Glints of far lights on
+// many culled tails add up (most pixels 2+ steps off); at 1/4096 0.13% of the
+// 8-bit values differ by more than one step from the uncut image (every tail
+// cut per pixel; 0.1% when tails were cut only where a whole tile lay out of
+// range). Glints of far lights on
 // mirror-like surfaces (GGX peak 1/(π·a²) = 5e4 at roughness 0.05) magnify any
 // threshold: those single pixels can differ a lot. tests/render/test_light_culling.cpp
 // holds the scene to that tolerance.
@@ -175,6 +178,24 @@ struct Object {
     glm::mat4 model{1.0f};       // object -> world
 };
 
+// A glTF model in the scene that can be posed (it has skins, morph targets or
+// animations): its meshes and objects are recomputed from the rig's rest data
+// by set_scene_frame and set_scene_time (tessera/animation.hpp).
+struct PosedGltfModel {
+    std::shared_ptr<const GltfRig> rig;
+    std::uint32_t first_mesh = 0;    // its meshes are Scene::meshes[first_mesh + GltfContent mesh index]
+    std::uint32_t first_object = 0;  // and its objects Scene::objects[first_object + ...]
+    glm::mat4 placement{1.0f};       // world = placement × the file's world space
+    // The animation frames play ([[models]].animation, or --frames on a glTF
+    // file): index into the rig's animations; -1 = none (the model keeps its pose).
+    int animation = -1;
+    // At frame f the animation is at start_seconds + speed · f / fps seconds;
+    // with loop, wrapped into [0, duration).
+    double start_seconds = 0.0;
+    double speed = 1.0;
+    bool loop = false;
+};
+
 struct Scene {
     std::string source;  // where the scene came from, for messages
     int width = 1280;    // output size in pixels, 1..kMaxImageDimension
@@ -194,6 +215,9 @@ struct Scene {
     // are those of the current frame (frame 0 as loaded); set_scene_frame
     // (tessera/animation.hpp) moves the scene to another.
     std::shared_ptr<const Animation> animation;
+    // glTF models with skins, morph targets or animations (gltf-animation):
+    // what set_scene_frame and set_scene_time pose. Empty for other scenes.
+    std::vector<PosedGltfModel> posed_models;
 };
 
 // A scene file that cannot be used. what() reads "file:line:column: message"

@@ -40,6 +40,8 @@ int run_bench(const BenchCommand& cmd) {
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;
+    if (cmd.cull_back_faces)
+        for (Material& material : scene.materials) material.double_sided = false;
     RenderSettings settings = cmd.settings;
     settings.keep_radiance = cmd.keep_radiance;
     const bool profiling = !cmd.trace_path.empty() || !cmd.heatmap_path.empty();
@@ -88,14 +90,13 @@ int run_bench(const BenchCommand& cmd) {
     }
     const FrameStats& s = renderer.last_frame_stats();  // counts are the same every frame
     const Summary frame = summarize(total);
-    const double light_count = double(std::max<std::size_t>(scene.lights.size(), 1));
-    const double shaded = double(std::max<std::uint64_t>(s.fragments_shaded, 1));
+    const double fragment_lights = double(std::max<std::uint64_t>(s.fragment_lights, 1));  // after light culling
     const double mfrag_per_s = double(s.fragments_shaded) / (frame.median * 1e3);
-    // Shading time (interpolation included) per fragment and light, on one thread.
+    // Shading time (interpolation included) per fragment and light shaded, on one thread.
     const auto shade_stage = std::find_if(stages.begin(), stages.end(),
                                           [](const Series& stage) { return stage.field == &FrameStats::shade_ms; });
     const double shade_median = summarize(shade_stage->samples).median;
-    const double ns_per_fragment_light = shade_median * 1e6 * renderer.threads() / (shaded * light_count);
+    const double ns_per_fragment_light = shade_median * 1e6 * renderer.threads() / fragment_lights;
 
     if (cmd.json) {
         std::printf("{\"scene\": \"%s\", \"width\": %d, \"height\": %d, \"msaa\": %d, \"threads\": %d, \"isa\": \"%s\", "
@@ -106,11 +107,11 @@ int run_bench(const BenchCommand& cmd) {
         for (std::size_t i = 0; i < stages.size(); ++i)
             std::printf("%s\"%s\": %.3f", i ? ", " : "", stages[i].name, summarize(stages[i].samples).median);
         std::printf("}, \"triangles\": %llu, \"triangles_binned\": %llu, \"fragments_rasterized\": %llu, "
-                    "\"fragments_shaded\": %llu, \"lights\": %zu, \"mfragments_per_s\": %.2f, "
+                    "\"fragments_shaded\": %llu, \"lights\": %zu, \"fragment_lights\": %llu, \"mfragments_per_s\": %.2f, "
                     "\"ns_per_fragment_light\": %.3f, \"peak_rss_mib\": %.1f, \"rss_growth_mib\": %.1f}\n",
                     (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                     (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded,
-                    scene.lights.size(), mfrag_per_s, ns_per_fragment_light, rss_peak, rss_peak - rss_after_warmup);
+                    scene.lights.size(), (unsigned long long)s.fragment_lights, mfrag_per_s, ns_per_fragment_light, rss_peak, rss_peak - rss_after_warmup);
         return 0;
     }
     std::printf("%s: %dx%d, msaa %d, %d threads, %s kernels, tile %d, %d frames after %d warm-up\n",
@@ -123,6 +124,9 @@ int run_bench(const BenchCommand& cmd) {
     std::printf("triangles in %llu, binned %llu; fragments rasterized %llu, shaded %llu; %zu lights\n",
                 (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded, scene.lights.size());
+    std::printf("fragment-lights shaded %llu (%.1f lights per fragment after culling)\n",
+                (unsigned long long)s.fragment_lights,
+                double(s.fragment_lights) / double(std::max<std::uint64_t>(s.fragments_shaded, 1)));
     std::printf("%.1f Mfragments/s shaded; %.2f ns per fragment-light (shading step, one thread)\n", mfrag_per_s,
                 ns_per_fragment_light);
     std::printf("peak memory %.1f MiB; growth over the timed frames %.1f MiB\n", rss_peak, rss_peak - rss_after_warmup);

@@ -15,6 +15,7 @@ struct BenchCommand {
     int width = 0;  // 0: the scene's own
     int height = 0;
     int msaa = 0;  // 0: the scene's own
+    bool cull_back_faces = false;  // every material single-sided, for racing llvmpipe with GL_CULL_FACE
     bool json = false;
     bool keep_radiance = false;  // like a render to PNG; --radiance adds the EXR's HDR image
     std::string trace_path;      // Chrome trace-event JSON of the timed frames, if set

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <optional>
@@ -19,12 +20,13 @@
 #include "batch/batch_render.hpp"
 #include "batch/frames.hpp"
 #include "batch/shard.hpp"
-#include "cli/bench_command.hpp"
-#include "cli/check_command.hpp"
-#include "cli/contact_sheet_command.hpp"
+#include "cli/frame_options.hpp"
 #include "cli/load_stats.hpp"
+#include "cli/tools_exec.hpp"
+#include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
+#include "tessera/animation.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
@@ -38,6 +40,8 @@ struct RenderCommand {
     int height = 0;
     int msaa = 0;                      // 0: the scene's own
     std::string camera;                // --camera NAME|INDEX of a glTF file; empty: its first
+    std::optional<std::string> time;   // --time SECONDS: glTF models' animations sampled then
+    std::string animation;             // --animation NAME|INDEX of a glTF file; empty: its first
     bool stats = false;
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
@@ -66,6 +70,32 @@ void print_stats(const tessera::Renderer& renderer, const tessera::RenderedImage
                 (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded);
 }
 
+// --time SECONDS as a number; anything else is refused here, NaN and
+// negative times by set_scene_time.
+double parse_seconds(const std::string& text) {
+    char* end = nullptr;
+    const double seconds = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size())
+        throw std::invalid_argument("--time '" + text + "': expected a number of seconds");
+    return seconds;
+}
+
+// --time and --animation (glTF animations, README "Command line"); --frames on
+// a glTF file alone plays its animation at 24 fps.
+void pose_for_render(const RenderCommand& cmd, const std::string& scene_path, tessera::Scene& scene) {
+    const bool gltf = tessera::is_gltf_path(scene_path);
+    if (!cmd.animation.empty() && !gltf)
+        throw tessera::SceneError(scene_path + ": --animation selects a glTF file's animation; in a TOML scene "
+                                  "each [[models]] entry chooses its own with 'animation'");
+    if (cmd.time) {
+        tessera::set_scene_time(scene, parse_seconds(*cmd.time), cmd.animation);
+    } else if (!cmd.frames.empty() && gltf) {
+        tessera::play_gltf_animation(scene, cmd.animation);
+    } else if (!cmd.animation.empty()) {
+        throw tessera::SceneError(scene_path + ": --animation chooses what --time or --frames plays; give one of them");
+    }
+}
+
 // A scene file with the command line's size overrides; the batch validates each frame.
 // Models come from `models`; after loading the last scene they are dropped (the scene
 // holds what it uses), so its frames do not pay for them.
@@ -74,6 +104,7 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
     const auto start = std::chrono::steady_clock::now();
     tessera::Scene scene = tessera::load_scene_file(scene_path, models, cmd.camera);
     if (scene_path == cmd.scene_paths.back()) models.clear();
+    pose_for_render(cmd, scene_path, scene);
     if (cmd.stats)
         tessera::cli::print_load_stats(before, tessera::cli::read_load_counters(),
                                        tessera::cli::milliseconds_since(start));
@@ -92,6 +123,8 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
 
 // One failing scene does not stop the others; the exit status says whether any failed.
 int run_render(const RenderCommand& cmd) {
+    if (cmd.time && !cmd.frames.empty())
+        throw std::invalid_argument("--time renders one moment and --frames a range of them; give one of the two");
     tessera::batch::BatchJob job;
     job.scene_paths = cmd.scene_paths;
     job.outputs = cmd.outputs;
@@ -130,27 +163,10 @@ int run_render(const RenderCommand& cmd) {
     return failed.empty() ? 0 : 1;
 }
 
-// The options render and bench share: output size and how the renderer runs.
-void add_frame_options(CLI::App* command, int& width, int& height, int& msaa, tessera::RenderSettings& settings) {
-    command->add_option("--msaa", msaa, "Samples per pixel, 1 or 4 (overrides the scene's output.msaa)")
-        ->check(CLI::IsMember({1, 4}));
-    command->add_option("--width", width, "Override the scene's image width in pixels")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    command->add_option("--height", height, "Override the scene's image height in pixels")
-        ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    command->add_option("--threads", settings.threads, "Worker threads (0 = one per hardware thread)")
-        ->check(CLI::Range(0, 1024));
-    command->add_option("--tile-size", settings.tile_size, "Screen tile side in pixels (power of two, 8-256)");
-    command->add_option("--isa", settings.isa, "SIMD kernels: auto, scalar, sse4, avx2, avx512");
-    command->add_flag_callback(
-        "--no-light-culling", [&settings] { settings.light_culling = false; },
-        "Shade every light in every tile, ranges or not (to compare with the culled image)");
-}
-
 // Batch rendering: frame ranges of animated scenes, sharding, resuming (README "Batch rendering").
 void add_batch_options(CLI::App* command, RenderCommand& render) {
     command->add_option("--frames", render.frames,
-                        "Frames of each scene's [animation] to render: A-B[:STEP] (inclusive), comma-separated; "
+                        "Frames of each scene's [animation] (or of a glTF file's animation, at 24 fps) to render: A-B[:STEP] (inclusive), comma-separated; "
                         "-o must then contain {frame} or {frame:0N}. Without it: frame 0");
     command->add_option("--shard", render.shard,
                         "Render only part I of N (1-based) of the frames and scenes; default: from "
@@ -169,6 +185,8 @@ void add_batch_options(CLI::App* command, RenderCommand& render) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // `tessera check|bench|contact-sheet ...` run as they always did, in tessera-tools.
+    if (argc > 1 && tessera::cli::is_tool_command(argv[1])) return tessera::cli::exec_tools(argc, argv);
     CLI::App app{"Tessera: a multithreaded SIMD CPU rasterizer with a PBR fragment stage", "tessera"};
     app.set_version_flag("--version", "tessera " TESSERA_VERSION);
     app.require_subcommand(1);
@@ -186,48 +204,33 @@ int main(int argc, char** argv) {
                            "Add surface data to every .exr output, a comma-separated list of depth, normal, albedo, "
                            "roughness, metallic, position (channels Z, N.XYZ, albedo.RGB, roughness, metallic, P.XYZ)")
         ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
-    add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
+    tessera::cli::add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
     add_batch_options(render_app, render);
     render_app->add_option("--camera", render.camera,
                            "For glTF files: the camera to render from, by name or by index in the file's cameras "
                            "(default: the first perspective camera in the node tree)");
+    render_app->add_option("--time", render.time,
+                           "Pose glTF models at this many seconds into their animation (skins, morph weights, "
+                           "nodes); default: their rest pose");
+    render_app->add_option("--animation", render.animation,
+                           "For glTF files: the animation --time or --frames plays, by name or index (default: the "
+                           "first); --frames on a glTF file renders its animation at 24 fps");
 
-    tessera::cli::BenchCommand bench;
-    CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");
-    bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
-    bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
-    bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
-    add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
-    bench_app->add_flag("--json", bench.json, "Print one JSON object");
-    bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
-    bench_app->add_option("--trace", bench.trace_path,
-                          "Write the timed frames as a Chrome trace-event JSON file (Perfetto, chrome://tracing): "
-                          "a track per worker, a span per pass, chunk and tile");
-    bench_app->add_option("--heatmap", bench.heatmap_path,
-                          "Write a PNG of the frame with each tile tinted by its cost");
-    bench_app->add_option("--heatmap-metric", bench.heatmap_metric,
-                          "What the heat map shows: time (ms per tile, median of the timed frames) or work "
-                          "(fragments x lights per tile)")
-        ->check(CLI::IsMember({"time", "work"}));
-
-    tessera::cli::ContactSheetCommand contact_sheet;
-    CLI::App* contact_sheet_app = tessera::cli::add_contact_sheet_command(app, contact_sheet);
-
-    tessera::cli::CheckCommand check;
-    CLI::App* check_app = tessera::cli::add_check_command(app, check);
+    // Image analysis lives in tessera-tools beside this binary (it links
+    // OpenImageIO, which renders do not need): main() execs it for these.
+    for (const tessera::cli::ToolCommand& tool : tessera::cli::tool_commands())
+        app.add_subcommand(tool.name, tool.description)->allow_extras()->prefix_command();
 
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int status = app.exit(e);
-        return status != 0 && *check_app ? tessera::cli::kCheckUsageError : status;
+        return app.exit(e);
     }
     try {
         if (*render_app) return run_render(render);
-        if (*bench_app) return tessera::cli::run_bench(bench);
-        if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
-        if (*check_app) return tessera::cli::run_check(check);
+        for (const tessera::cli::ToolCommand& tool : tessera::cli::tool_commands())
+            if (*app.get_subcommand(tool.name)) return tessera::cli::exec_tools(argc, argv);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 1;

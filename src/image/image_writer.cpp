@@ -6,9 +6,14 @@
 
 #include <unistd.h>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <Imath/half.h>
 
+#include "image/png_writer.hpp"
 #include "tessera/image_io.hpp"
 
 namespace tessera {
@@ -39,11 +44,12 @@ struct ExrChannel {
     const char* name;
     const float* values;     // this channel's value of pixel 0
     std::size_t stride;      // floats from one pixel to the next
-    OIIO::TypeDesc format;   // HALF or FLOAT
+    Imf::PixelType format;   // HALF or FLOAT in the file
 };
 
 // The radiance and every AOV plane the image has, named as OpenEXR and
-// OpenImageIO expect (image_io.hpp lists them). Colour-like data in [0, 1] is
+// OpenImageIO expect (image_io.hpp lists them): the names and types OpenImageIO
+// wrote before OpenEXR wrote them directly. Colour-like data in [0, 1] is
 // stored as half, which holds more than the 8 bits textures give; depth,
 // normal and position as float, since half's 11 bits would step by 0.06 at a
 // depth of 100.
@@ -51,7 +57,7 @@ std::vector<ExrChannel> exr_channels(const RenderedImage& image, const std::file
     const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
     std::vector<ExrChannel> channels;
     const auto add = [&](const std::vector<float>& plane, const char* plane_name,
-                         std::initializer_list<const char*> names, OIIO::TypeDesc format) {
+                         std::initializer_list<const char*> names, Imf::PixelType format) {
         if (plane.empty()) return;
         if (plane.size() != names.size() * pixels)
             throw ImageError(path.string() + ": the image's " + plane_name + " plane holds " +
@@ -59,52 +65,52 @@ std::vector<ExrChannel> exr_channels(const RenderedImage& image, const std::file
         std::size_t c = 0;
         for (const char* name : names) channels.push_back({name, plane.data() + c++, names.size(), format});
     };
-    add(image.radiance, "radiance", {"R", "G", "B"}, OIIO::TypeDesc::HALF);
-    add(image.aov.depth, "depth", {"Z"}, OIIO::TypeDesc::FLOAT);
-    add(image.aov.normal, "normal", {"N.X", "N.Y", "N.Z"}, OIIO::TypeDesc::FLOAT);
-    add(image.aov.albedo, "albedo", {"albedo.R", "albedo.G", "albedo.B"}, OIIO::TypeDesc::HALF);
-    add(image.aov.roughness, "roughness", {"roughness"}, OIIO::TypeDesc::HALF);
-    add(image.aov.metallic, "metallic", {"metallic"}, OIIO::TypeDesc::HALF);
-    add(image.aov.position, "position", {"P.X", "P.Y", "P.Z"}, OIIO::TypeDesc::FLOAT);
+    add(image.radiance, "radiance", {"R", "G", "B"}, Imf::HALF);
+    add(image.aov.depth, "depth", {"Z"}, Imf::FLOAT);
+    add(image.aov.normal, "normal", {"N.X", "N.Y", "N.Z"}, Imf::FLOAT);
+    add(image.aov.albedo, "albedo", {"albedo.R", "albedo.G", "albedo.B"}, Imf::HALF);
+    add(image.aov.roughness, "roughness", {"roughness"}, Imf::HALF);
+    add(image.aov.metallic, "metallic", {"metallic"}, Imf::HALF);
+    add(image.aov.position, "position", {"P.X", "P.Y", "P.Z"}, Imf::FLOAT);
     return channels;
 }
 
 // A failure's reason, never "" (which means success below).
 std::string failure(std::string reason) { return reason.empty() ? "write failed" : reason; }
 
-// Returns why the write failed, or "" on success.
-std::string write_png(const RenderedImage& image, const std::filesystem::path& tmp) {
-    const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    OIIO::ImageBuf buffer(spec, const_cast<std::uint8_t*>(image.display.data()));
-    return buffer.write(tmp.string(), OIIO::TypeDesc::UINT8, "png") ? "" : failure(buffer.geterror());
-}
-
-// Returns why the write failed, or "" on success. One multi-channel file, written a scanline at a time so that interleaving
-// the planes needs one row of memory, not a second copy of the image.
+// Returns why the write failed, or "" on success. One multi-channel file
+// (OpenEXR 3.1, ZIP compression as OpenImageIO wrote it). Float channels are
+// written from the image's planes in place (each slice points into its plane);
+// half channels from a converted copy, since OpenEXR converts only between
+// matching types: Imath's half(float), round to nearest, as OpenImageIO did.
 std::string write_exr(const std::vector<ExrChannel>& channels, int width, int height,
                       const std::filesystem::path& tmp) {
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-    if (!out) return failure(OIIO::geterror());
-    bool all_half = true;
-    for (const ExrChannel& c : channels) all_half = all_half && c.format == OIIO::TypeDesc::HALF;
-    OIIO::ImageSpec spec(width, height, int(channels.size()), all_half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-    spec.channelnames.clear();
-    for (const ExrChannel& c : channels) {
-        if (c.name == std::string_view("Z")) spec.z_channel = int(spec.channelnames.size());
-        spec.channelnames.emplace_back(c.name);
-        if (!all_half) spec.channelformats.push_back(c.format);
-    }
-    if (!out->open(tmp.string(), spec)) return failure(out->geterror());
-    std::vector<float> row(channels.size() * std::size_t(width));
-    for (int y = 0; y < height; ++y) {
-        const std::size_t first_pixel = std::size_t(y) * width;
-        for (std::size_t c = 0; c < channels.size(); ++c) {
-            const float* values = channels[c].values + first_pixel * channels[c].stride;
-            for (int x = 0; x < width; ++x) row[x * channels.size() + c] = values[x * channels[c].stride];
+    try {
+        const std::size_t pixels = std::size_t(width) * std::size_t(height);
+        Imf::Header header(width, height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        Imf::FrameBuffer frame;
+        std::vector<std::vector<Imath::half>> half_planes;
+        half_planes.reserve(channels.size());
+        for (const ExrChannel& c : channels) {
+            header.channels().insert(c.name, Imf::Channel(c.format));
+            if (c.format == Imf::HALF) {
+                std::vector<Imath::half>& plane = half_planes.emplace_back(pixels);
+                for (std::size_t i = 0; i < pixels; ++i) plane[i] = Imath::half(c.values[i * c.stride]);
+                frame.insert(c.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(plane.data()), sizeof(Imath::half),
+                                                sizeof(Imath::half) * std::size_t(width)));
+            } else {
+                const std::size_t x_stride = c.stride * sizeof(float);
+                frame.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(c.values)),
+                                                x_stride, x_stride * std::size_t(width)));
+            }
         }
-        if (!out->write_scanline(y, 0, OIIO::TypeDesc::FLOAT, row.data())) return failure(out->geterror());
+        Imf::OutputFile file(tmp.c_str(), header);
+        file.setFrameBuffer(frame);
+        file.writePixels(height);
+    } catch (const std::exception& e) {
+        return failure(e.what());
     }
-    if (!out->close()) return failure(out->geterror());
     return "";
 }
 
@@ -127,7 +133,7 @@ void write_image(const RenderedImage& image, const std::filesystem::path& path) 
     if (format == ImageFormat::exr) channels = exr_channels(image, path);
 
     const std::filesystem::path tmp = temporary_path_for(path);
-    std::string reason = format == ImageFormat::png ? write_png(image, tmp)
+    std::string reason = format == ImageFormat::png ? write_png_rgb8(image.display.data(), image.width, image.height, tmp)
                                                     : write_exr(channels, image.width, image.height, tmp);
     if (!reason.empty()) {
         std::error_code ignored;

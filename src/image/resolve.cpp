@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+
+#include "image/resolve_kernels.hpp"
+#include "raster/raster_limits.hpp"
 
 namespace tessera::image {
 
@@ -70,6 +74,40 @@ void write_aov_fragment(AovPlanes& aov, std::size_t pixel, const shade::Fragment
     }
 }
 
+std::uint32_t packed_clear(const ClearValues& clear) {
+    return std::uint32_t(clear.display[0]) | std::uint32_t(clear.display[1]) << 8 | std::uint32_t(clear.display[2]) << 16;
+}
+
+void clear_tile_display(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image) {
+    // One row of the clear colour, copied to each row of the tile.
+    std::uint8_t row[3 * raster::kMaxTileSize];
+    const std::size_t row_bytes = 3 * std::size_t(rect.width());
+    for (std::size_t i = 0; i < row_bytes; i += 3) std::memcpy(row + i, clear.display, 3);
+    for (int y = rect.y0; y < rect.y1; ++y)
+        std::memcpy(&image.display[3 * (std::size_t(y) * image.width + rect.x0)], row, row_bytes);
+}
+
+// The display rows of a tile: covered pixels take the next encoded fragment,
+// the others the clear colour.
+void write_display(simd::Isa isa, const raster::TileBuffers& coverage, const raster::TileRect& rect,
+                   std::size_t count, const float* encoded, std::uint32_t clear_packed, RenderedImage& image) {
+    if (isa == simd::Isa::scalar) {
+        return for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
+            const std::uint32_t value = covered ? packed_unorm8(encoded[k]) : clear_packed;
+            for (int c = 0; c < 3; ++c) image.display[i + c] = std::uint8_t(value >> (8 * c));
+        });
+    }
+    const DisplayRows rows{coverage.depth.data(), coverage.side, rect.width(), rect.height(), encoded, count, clear_packed,
+                           &image.display[3 * (std::size_t(rect.y0) * image.width + rect.x0)],
+                           3 * std::size_t(image.width)};
+    switch (isa) {
+        case simd::Isa::sse4: return write_display_rows_sse4(rows);
+        case simd::Isa::avx2: return write_display_rows_avx2(rows);
+        case simd::Isa::avx512: return write_display_rows_avx512(rows);
+        case simd::Isa::scalar: break;
+    }
+}
+
 }  // namespace
 
 ClearValues clear_values(const glm::vec3& clear_color) {
@@ -78,18 +116,14 @@ ClearValues clear_values(const glm::vec3& clear_color) {
 }
 
 void clear_tile(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image) {
+    clear_tile_display(rect, clear, image);
     const glm::vec3& clear_radiance = clear.radiance;
-    const std::uint8_t* clear_display = clear.display;
-    for (int y = rect.y0; y < rect.y1; ++y) {
+    if (!image.radiance.empty()) for (int y = rect.y0; y < rect.y1; ++y) {
         const std::size_t first = 3 * (std::size_t(y) * image.width + rect.x0);
         const std::size_t end = first + 3 * std::size_t(rect.width());
         for (std::size_t i = first; i < end; i += 3)
-            image.display[i] = clear_display[0], image.display[i + 1] = clear_display[1],
-            image.display[i + 2] = clear_display[2];
-        if (!image.radiance.empty())
-            for (std::size_t i = first; i < end; i += 3)
-                image.radiance[i] = clear_radiance.r, image.radiance[i + 1] = clear_radiance.g,
-                image.radiance[i + 2] = clear_radiance.b;
+            image.radiance[i] = clear_radiance.r, image.radiance[i + 1] = clear_radiance.g,
+            image.radiance[i + 2] = clear_radiance.b;
     }
     if (image.aov.empty()) return;
     for (int y = rect.y0; y < rect.y1; ++y)
@@ -113,23 +147,14 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
                   const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image) {
     const glm::vec3& clear_radiance = clear.radiance;
-    const std::uint8_t* clear_display = clear.display;
     if (!image.radiance.empty()) for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
         float* radiance = &image.radiance[i];
         if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];
         else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
     });
-    if (count > 0) shade::tonemap_gamma(isa, count, shaded.r, shaded.g, shaded.b);
-    for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
-        std::uint8_t* display = &image.display[i];
-        if (covered) {
-            display[0] = quantize_unorm8(shaded.r[k]);
-            display[1] = quantize_unorm8(shaded.g[k]);
-            display[2] = quantize_unorm8(shaded.b[k]);
-        } else {
-            display[0] = clear_display[0], display[1] = clear_display[1], display[2] = clear_display[2];
-        }
-    });
+    if (count == 0) return clear_tile_display(rect, clear, image);
+    encode_display_unorm8(isa, count, shaded.r, shaded.g, shaded.b);
+    write_display(isa, coverage, rect, count, shaded.r, packed_clear(clear), image);
 }
 
 void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect, std::size_t count,
@@ -149,16 +174,18 @@ void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRec
             }
         }
     }
-    if (count > 0) shade::tonemap_gamma(isa, count, shaded.r, shaded.g, shaded.b);
+    if (count == 0) return clear_tile_display(rect, clear, image);
+    encode_display_unorm8(isa, count, shaded.r, shaded.g, shaded.b);
+    const std::uint32_t clear_packed = packed_clear(clear);
     for (int y = 0; y < rect.height(); ++y) {
         for (int x = 0; x < rect.width(); ++x) {
             const std::int32_t* fragment = &samples.fragment[std::size_t(n) * (std::size_t(y) * samples.side + x)];
             std::uint8_t* display = &image.display[3 * (std::size_t(rect.y0 + y) * image.width + rect.x0 + x)];
-            const float* planes[3] = {shaded.r, shaded.g, shaded.b};
+            std::uint32_t value[n];
+            for (int s = 0; s < n; ++s) value[s] = fragment[s] >= 0 ? packed_unorm8(shaded.r[fragment[s]]) : clear_packed;
             for (int c = 0; c < 3; ++c) {
                 unsigned sum = 0;
-                for (int s = 0; s < n; ++s)
-                    sum += fragment[s] >= 0 ? quantize_unorm8(planes[c][fragment[s]]) : clear.display[c];
+                for (int s = 0; s < n; ++s) sum += (value[s] >> (8 * c)) & 0xFFu;
                 display[c] = std::uint8_t((sum + n / 2) / n);
             }
         }

@@ -5,19 +5,13 @@
 
 #include <glm/glm.hpp>
 
+#include "image/display_encoding.hpp"
 #include "raster/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/shade_kernels.hpp"
 #include "tessera/renderer.hpp"
 
 namespace tessera::image {
-
-// 8-bit value of a display-referred channel, rounded to nearest as a UNORM8
-// framebuffer stores it; out-of-range values clamp, NaN becomes 0.
-inline std::uint8_t quantize_unorm8(float display) {
-    const float c = display > 0.0f ? (display < 1.0f ? display : 1.0f) : 0.0f;
-    return static_cast<std::uint8_t>(c * 255.0f + 0.5f);
-}
 
 // The scene-linear radiance that Reinhard + gamma map back onto a display
 // colour (the tonemap's inverse), kept finite: the EXR's background.
@@ -33,8 +27,9 @@ ClearValues clear_values(const glm::vec3& clear_color);
 // Writes one tile of the frame, each pixel once: covered pixels take the next
 // of `count` shaded values (row-major order, as gathered), the others the
 // clear colour. Radiance goes to the image as it is (if the image keeps
-// radiance); then `shaded` is tonemapped in place (Reinhard, gamma) and
-// quantized for the display image.
+// radiance); then the display image gets each value tonemapped (Reinhard,
+// gamma) and quantized, exactly as the scalar reference does, in any ISA
+// (encode_display_unorm8, which overwrites shaded.r).
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
                   const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image);

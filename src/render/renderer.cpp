@@ -28,6 +28,7 @@
 #include "render/frame_memory.hpp"
 #include "render/huge_pages.hpp"
 #include "shade/alpha_mask.hpp"
+#include "shade/light_culling.hpp"
 #include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
 #include "shade/surface_gather.hpp"
@@ -60,11 +61,12 @@ struct WorkerScratch {
     shade::FragmentBuffer fragments;
     std::vector<shade::MaterialRun> material_runs;
     shade::MaterialScratch material_scratch;
-    shade::ShadingLights tile_lights;  // the frame's lights that reach this tile (light culling)
+    shade::LightCullScratch light_culling;
     raster::BlendFragments blend_fragments;  // blended objects only: reserved at the first tile that has them
     image::TileRadiance blend_radiance;
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
+    std::uint64_t fragment_lights = 0;
     std::uint64_t tile_triangles = 0;  // rasterized in the current tile (profile)
     std::uint32_t tile_light_count = 0;  // lights shaded in the current tile (profile)
     std::vector<ProfileSpan> spans;    // this worker's chunks and tiles, with RenderSettings::profile
@@ -425,9 +427,9 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     size_aov_planes(settings.aovs, pixels, image.aov);
     view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
-    for (WorkerScratch& s : scratch) s.tile_lights.reserve(lights.count());  // a no-op once large enough
+    for (WorkerScratch& s : scratch) s.light_culling.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
-    for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
+    for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = s.fragment_lights = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
         WorkerScratch& s = scratch.local();
@@ -439,6 +441,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     for (const WorkerScratch& s : scratch) {
         stats.fragments_rasterized += s.counters.fragments;
         stats.fragments_shaded += s.fragments_shaded;
+        stats.fragment_lights += s.fragment_lights;
         stats.rasterize_ms += s.rasterize_ms / threads;
         stats.shade_ms += s.shade_ms / threads;
         stats.resolve_ms += s.resolve_ms / threads;
@@ -652,12 +655,16 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
     if (count > 0) {
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
         const shade::FragmentInputs inputs = s.fragments.inputs(count);
-        const shade::ShadingLights& tile_lights =
-            settings.light_culling && lights.any_range
-                ? shade::lights_reaching(lights, shade::fragment_bounds(inputs), s.tile_lights)
-                : lights;
-        shade::shade_fragments(isa, inputs, tile_lights, s.fragments.outputs());
-        s.tile_light_count = std::uint32_t(tile_lights.count());
+        if (settings.light_culling && lights.any_range) {
+            const shade::CulledWork work =
+                shade::shade_fragments_culled(isa, inputs, lights, s.light_culling, s.fragments.outputs());
+            s.tile_light_count = std::uint32_t(work.tile_lights);
+            s.fragment_lights += work.fragment_lights;
+        } else {
+            shade::shade_fragments(isa, inputs, lights, s.fragments.outputs());
+            s.tile_light_count = std::uint32_t(lights.count());
+            s.fragment_lights += count * lights.count();
+        }
         shade::add_emission(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;

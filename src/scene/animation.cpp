@@ -117,6 +117,7 @@ void set_scene_frame(Scene& scene, int frame) {
         if (!track.color.empty())
             light.color = glm::max(sample_track(track.color, track.interpolation, at), glm::vec3(0.0f));
     }
+    pose_models_at_frame(scene, frame, animation.fps);
 }
 
 int scene_frame_count(const Scene& scene) { return scene.animation ? scene.animation->frame_count : 1; }

@@ -19,4 +19,7 @@ glm::mat4 placement_matrix(const glm::vec3& translate, const glm::vec3& rotate_d
 // Writes the animated camera values at `frame` into `camera` (the others stay).
 void evaluate_camera(const Animation& animation, double frame, Camera& camera);
 
+// Poses the scene's glTF models that play an animation at `frame` (posed_models.cpp).
+void pose_models_at_frame(Scene& scene, int frame, double fps);
+
 }  // namespace tessera

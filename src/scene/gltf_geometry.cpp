@@ -7,201 +7,13 @@
 #include <limits>
 #include <vector>
 
+#include "scene/gltf_accessors.hpp"
+
 namespace tessera::gltf {
 
 void fail(const std::string& source, const std::string& message) { throw SceneError(source + ": " + message); }
 
 namespace {
-
-std::string type_name(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-        case TINYGLTF_TYPE_VEC2: return "VEC2";
-        case TINYGLTF_TYPE_VEC3: return "VEC3";
-        case TINYGLTF_TYPE_VEC4: return "VEC4";
-        case TINYGLTF_TYPE_MAT2: return "MAT2";
-        case TINYGLTF_TYPE_MAT3: return "MAT3";
-        case TINYGLTF_TYPE_MAT4: return "MAT4";
-        default: return "type " + std::to_string(type);
-    }
-}
-
-std::string component_name(int component_type) {
-    switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-        case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-        default: return "component type " + std::to_string(component_type);
-    }
-}
-
-// Bytes per component; 0 for a type glTF does not allow in accessors.
-std::size_t component_size(int component_type) {
-    switch (component_type) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-        default: return 0;
-    }
-}
-
-int component_count(int type) {
-    switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return 1;
-        case TINYGLTF_TYPE_VEC2: return 2;
-        case TINYGLTF_TYPE_VEC3: return 3;
-        case TINYGLTF_TYPE_VEC4: return 4;
-        default: return 0;
-    }
-}
-
-// An accessor whose every element lies inside its buffer view and buffer.
-struct CheckedAccessor {
-    const unsigned char* first = nullptr;  // element 0
-    std::size_t stride = 0;                // bytes from one element to the next
-    std::size_t count = 0;
-    int component_type = 0;
-    int components = 0;
-    bool normalized = false;
-
-    const unsigned char* element(std::size_t i) const { return first + i * stride; }
-};
-
-// What an attribute may be stored as.
-struct AccessorRule {
-    int type;                                   // TINYGLTF_TYPE_*
-    std::vector<int> component_types;           // allowed; the first is the float one where any is
-    bool integer_needs_normalized = false;      // texture coordinates: u8/u16 must be normalized
-};
-
-class AccessorReader {
-public:
-    AccessorReader(const tinygltf::Model& model, const std::string& source) : model_(model), source_(source) {}
-
-    CheckedAccessor check(int index, const std::string& what, const AccessorRule& rule) const {
-        if (index < 0 || std::size_t(index) >= model_.accessors.size())
-            fail(source_, what + " uses accessor " + std::to_string(index) + " but the file has " +
-                              std::to_string(model_.accessors.size()) + " accessors");
-        const tinygltf::Accessor& accessor = model_.accessors[std::size_t(index)];
-        const std::string name = what + " (accessor " + std::to_string(index) + ")";
-        if (accessor.sparse.isSparse) fail(source_, name + " is sparse; sparse accessors are not supported");
-        if (accessor.type != rule.type)
-            fail(source_, name + " is " + type_name(accessor.type) + ", expected " + type_name(rule.type));
-        bool allowed = false;
-        for (const int t : rule.component_types) allowed = allowed || accessor.componentType == t;
-        std::string allowed_names;
-        for (const int t : rule.component_types) allowed_names += (allowed_names.empty() ? "" : ", ") + component_name(t);
-        if (!allowed)
-            fail(source_, name + " has components of " + component_name(accessor.componentType) + ", expected " +
-                              allowed_names);
-        if (rule.integer_needs_normalized && accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT &&
-            !accessor.normalized)
-            fail(source_, name + " holds " + component_name(accessor.componentType) +
-                              " values that are not normalized; expected FLOAT or normalized integers");
-
-        CheckedAccessor checked;
-        checked.count = accessor.count;
-        checked.component_type = accessor.componentType;
-        checked.components = component_count(accessor.type);
-        checked.normalized = accessor.normalized;
-        const std::size_t element_size = component_size(accessor.componentType) * std::size_t(checked.components);
-        if (accessor.bufferView < 0) {
-            if (accessor.count == 0) return checked;
-            fail(source_, name + " has no bufferView (implicit zeros); not supported");
-        }
-        if (std::size_t(accessor.bufferView) >= model_.bufferViews.size())
-            fail(source_, name + " uses bufferView " + std::to_string(accessor.bufferView) + " but the file has " +
-                              std::to_string(model_.bufferViews.size()));
-        const tinygltf::BufferView& view = model_.bufferViews[std::size_t(accessor.bufferView)];
-        const std::string view_name = "bufferView " + std::to_string(accessor.bufferView);
-        if (view.buffer < 0 || std::size_t(view.buffer) >= model_.buffers.size())
-            fail(source_, view_name + " (for " + name + ") uses buffer " + std::to_string(view.buffer) +
-                              " but the file has " + std::to_string(model_.buffers.size()));
-        const tinygltf::Buffer& buffer = model_.buffers[std::size_t(view.buffer)];
-        checked.stride = view.byteStride != 0 ? view.byteStride : element_size;
-        if (checked.stride < element_size)
-            fail(source_, view_name + " (for " + name + ") has byteStride " + std::to_string(view.byteStride) +
-                              ", less than the " + std::to_string(element_size) + "-byte element");
-
-        // The view must lie inside the buffer, and the last element inside the view.
-        std::size_t view_end = 0;
-        if (__builtin_add_overflow(view.byteOffset, view.byteLength, &view_end) || view_end > buffer.data.size())
-            fail(source_, view_name + " (for " + name + ") spans bytes " + std::to_string(view.byteOffset) + " + " +
-                              std::to_string(view.byteLength) + ", past the end of buffer " +
-                              std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes)");
-        if (accessor.count == 0) return checked;
-        std::size_t last_start = 0, end = 0;
-        if (__builtin_mul_overflow(accessor.count - 1, checked.stride, &last_start) ||
-            __builtin_add_overflow(last_start, accessor.byteOffset, &last_start) ||
-            __builtin_add_overflow(last_start, element_size, &end) || end > view.byteLength)
-            fail(source_, name + " is out of range: " + std::to_string(accessor.count) + " elements of " +
-                              std::to_string(element_size) + " bytes every " + std::to_string(checked.stride) +
-                              " from byteOffset " + std::to_string(accessor.byteOffset) + " do not fit " + view_name +
-                              " (" + std::to_string(view.byteLength) + " bytes)");
-        checked.first = buffer.data.data() + view.byteOffset + accessor.byteOffset;
-        return checked;
-    }
-
-private:
-    const tinygltf::Model& model_;
-    const std::string& source_;
-};
-
-template <typename T>
-T load(const unsigned char* p) {
-    T value;
-    std::memcpy(&value, p, sizeof value);
-    return value;
-}
-
-// Component c of element i as a float; normalized integers map to [0, 1] or [-1, 1] (glTF's rules).
-float component(const CheckedAccessor& a, std::size_t i, int c) {
-    const unsigned char* p = a.element(i) + std::size_t(c) * component_size(a.component_type);
-    switch (a.component_type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return a.normalized ? load<std::uint8_t>(p) / 255.0f : load<std::uint8_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return a.normalized ? load<std::uint16_t>(p) / 65535.0f : load<std::uint16_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-            return a.normalized ? std::max(load<std::int8_t>(p) / 127.0f, -1.0f) : load<std::int8_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-            return a.normalized ? std::max(load<std::int16_t>(p) / 32767.0f, -1.0f) : load<std::int16_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return float(load<std::uint32_t>(p));
-        default: return 0.0f;  // excluded by AccessorRule
-    }
-}
-
-template <int N>
-std::vector<glm::vec<N, float>> read_vectors(const CheckedAccessor& a) {
-    std::vector<glm::vec<N, float>> values(a.count);
-    if (a.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
-        // The common case, one copy per element (positions of a million-triangle mesh).
-        for (std::size_t i = 0; i < a.count; ++i) std::memcpy(&values[i], a.element(i), sizeof(float) * N);
-        return values;
-    }
-    for (std::size_t i = 0; i < a.count; ++i)
-        for (int c = 0; c < N; ++c) values[i][c] = component(a, i, c);
-    return values;
-}
-
-std::vector<std::uint32_t> read_indices(const CheckedAccessor& a) {
-    std::vector<std::uint32_t> indices(a.count);
-    for (std::size_t i = 0; i < a.count; ++i) {
-        const unsigned char* p = a.element(i);
-        switch (a.component_type) {
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = load<std::uint8_t>(p); break;
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: indices[i] = load<std::uint16_t>(p); break;
-            default: indices[i] = load<std::uint32_t>(p); break;
-        }
-    }
-    return indices;
-}
 
 // Strips and fans as triangle lists, keeping glTF's winding (spec §3.7.2.1).
 std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32_t>& v) {
@@ -220,8 +32,10 @@ std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32
 }
 
 // glTF's rule for a primitive without normals: flat shading. Each triangle gets
-// its own three vertices carrying the face normal.
-void make_flat_normals(Mesh& mesh) {
+// its own three vertices carrying the face normal. `sources` gets the vertex
+// each new one copies.
+void make_flat_normals(Mesh& mesh, std::vector<std::uint32_t>& sources) {
+    sources = mesh.indices;
     const auto unweld = [&mesh](auto& attribute) {
         if (attribute.empty()) return;
         std::remove_reference_t<decltype(attribute)> split(mesh.indices.size());
@@ -246,6 +60,32 @@ void make_flat_normals(Mesh& mesh) {
 int attribute(const tinygltf::Primitive& primitive, const char* name) {
     const auto found = primitive.attributes.find(name);
     return found == primitive.attributes.end() ? -1 : found->second;
+}
+
+// What each attribute may be stored as: glTF's base types, and with
+// KHR_mesh_quantization (when the file lists it in extensionsUsed) the
+// extension's table: positions and uvs in any 8/16-bit integers, normalized or
+// not; normals and tangents in normalized signed ones.
+struct AttributeRules {
+    AccessorRule position, normal, tangent, texcoord;
+};
+
+AttributeRules attribute_rules(const tinygltf::Model& model) {
+    constexpr int f32 = TINYGLTF_COMPONENT_TYPE_FLOAT, i8 = TINYGLTF_COMPONENT_TYPE_BYTE,
+                  u8 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, i16 = TINYGLTF_COMPONENT_TYPE_SHORT,
+                  u16 = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
+    if (quantized)
+        return {{TINYGLTF_TYPE_VEC3, {f32, i8, u8, i16, u16}},
+                {TINYGLTF_TYPE_VEC3, {f32, i8, i16}, true},
+                {TINYGLTF_TYPE_VEC4, {f32, i8, i16}, true},
+                {TINYGLTF_TYPE_VEC2, {f32, i8, u8, i16, u16}}};
+    const std::string note = "other types need KHR_mesh_quantization in extensionsUsed";
+    return {{TINYGLTF_TYPE_VEC3, {f32}, false, false, note},
+            {TINYGLTF_TYPE_VEC3, {f32}, false, false, note},
+            {TINYGLTF_TYPE_VEC4, {f32}, false, false, note},
+            {TINYGLTF_TYPE_VEC2, {f32, u8, u16}, true, false, note}};
 }
 
 // COLOR_0: VEC3 (alpha 1) or VEC4 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT,
@@ -302,8 +142,8 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
     const AccessorReader reader(model, source);
     const int position_accessor = attribute(primitive, "POSITION");
     if (position_accessor < 0) fail(source, label + " has no POSITION attribute");
-    const AccessorRule float_vec3{TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}};
-    mesh.positions = read_vectors<3>(reader.check(position_accessor, label + " POSITION", float_vec3));
+    const AttributeRules rules = attribute_rules(model);
+    mesh.positions = read_vectors<3>(reader.check(position_accessor, label + " POSITION", rules.position));
     const std::size_t vertex_count = mesh.positions.size();
     if (vertex_count > std::numeric_limits<std::uint32_t>::max())
         fail(source, label + " has " + std::to_string(vertex_count) + " vertices; at most 2^32 - 1 are supported");
@@ -314,20 +154,16 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
                              std::to_string(vertex_count) + " positions");
     };
     if (const int n = attribute(primitive, "NORMAL"); n >= 0) {
-        mesh.normals = read_vectors<3>(reader.check(n, label + " NORMAL", float_vec3));
+        mesh.normals = read_vectors<3>(reader.check(n, label + " NORMAL", rules.normal));
         check_count(mesh.normals.size(), "NORMAL");
     }
     const std::string texcoord = "TEXCOORD_" + std::to_string(texcoord_set);
     if (const int uv = attribute(primitive, texcoord.c_str()); uv >= 0) {
-        const AccessorRule rule{TINYGLTF_TYPE_VEC2,
-                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                true};
-        mesh.uvs = read_vectors<2>(reader.check(uv, label + " " + texcoord, rule));
+        mesh.uvs = read_vectors<2>(reader.check(uv, label + " " + texcoord, rules.texcoord));
         check_count(mesh.uvs.size(), texcoord.c_str());
     }
     if (const int t = attribute(primitive, "TANGENT"); t >= 0) {
-        mesh.tangents = read_vectors<4>(reader.check(t, label + " TANGENT", {TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_FLOAT}}));
+        mesh.tangents = read_vectors<4>(reader.check(t, label + " TANGENT", rules.tangent));
         check_count(mesh.tangents.size(), "TANGENT");
     }
     if (const int c = attribute(primitive, "COLOR_0"); c >= 0) read_colors(model, reader, c, source, label, mesh);
@@ -338,7 +174,7 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
         const AccessorRule rule{TINYGLTF_TYPE_SCALAR,
                                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}};
-        vertices = read_indices(reader.check(primitive.indices, label + " indices", rule));
+        vertices = read_uints(reader.check(primitive.indices, label + " indices", rule));
         for (std::size_t i = 0; i < vertices.size(); ++i) {
             if (vertices[i] >= vertex_count)
                 fail(source, label + " indices (accessor " + std::to_string(primitive.indices) + "): index " +
@@ -357,8 +193,15 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
     } else {
         mesh.indices = triangle_list(mode, vertices);
     }
-    if (mesh.normals.empty()) make_flat_normals(mesh);
+    if (mesh.normals.empty()) make_flat_normals(mesh, result.vertex_sources);
     return result;
+}
+
+std::vector<float> read_accessor_floats(const tinygltf::Model& model, int index, const std::string& source,
+                                        const std::string& what, int type, std::initializer_list<int> component_types,
+                                        bool integers_need_normalized) {
+    return read_floats(AccessorReader(model, source)
+                           .check(index, what, AccessorRule{type, component_types, integers_need_normalized}));
 }
 
 }  // namespace tessera::gltf

@@ -21,6 +21,8 @@
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
+#include "scene/gltf_animation.hpp"
+#include "scene/gltf_compression.hpp"
 #include "scene/gltf_extensions.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_materials.hpp"
@@ -143,6 +145,11 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
     loader.SetFsCallbacks({file_exists, expand_nothing, read_whole_file, write_nothing, &context});
     std::string err, warn;
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    // Meshopt fallback buffers and Draco indices, which tinygltf would refuse (gltf_compression.hpp).
+    const gltf::ParseInput input = gltf::prepare_for_tinygltf(bytes, binary);
+    if (!input.bytes.empty()) bytes = input.bytes;
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        fail(source, "file of " + std::to_string(bytes.size()) + " bytes is larger than glTF's 4 GB limit");
     bool loaded = false;
     try {
         loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
@@ -159,6 +166,7 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
                                                    : " (external files are not read here)";
         fail(source, message);
     }
+    gltf::decode_compressed_geometry(model, source, input.fallback_buffers);
     return model;
 }
 
@@ -183,6 +191,7 @@ public:
         for (std::size_t c = 0; c < model_.cameras.size(); ++c)
             content_.cameras[c].name = model_.cameras[c].name, content_.cameras[c].type = model_.cameras[c].type;
         walk_nodes();
+        content_.rig = gltf::read_rig(model_, source_, content_, object_nodes_, mesh_sources_);
         gltf_import_times().convert_ns += nanoseconds_since(start);
         start = std::chrono::steady_clock::now();
         decode_textures();
@@ -272,7 +281,7 @@ private:
             visited[index] = true;
             const glm::mat4 world = pending.parent_world * local_transform(node, label);
             if (!finite(world)) fail(label + " has a world transform that is not finite");
-            if (node.mesh >= 0) place_mesh(node.mesh, world, label);
+            if (node.mesh >= 0) place_mesh(node.mesh, world, label, pending.node);
             node_name_ = node.name;
             if (node.camera >= 0) read_camera(node.camera, world, label);
             read_node_light(node, world, label);
@@ -288,13 +297,17 @@ private:
         std::uint32_t material;
     };
 
-    void place_mesh(int mesh_index, const glm::mat4& world, const std::string& node_label) {
+    void place_mesh(int mesh_index, const glm::mat4& world, const std::string& node_label, int node) {
         if (std::size_t(mesh_index) >= model_.meshes.size())
             fail(node_label + " uses mesh " + std::to_string(mesh_index) + " but the file has " +
                  std::to_string(model_.meshes.size()) + " meshes");
+        // A skinned or morphed mesh is posed per node: each node gets its own copy.
+        std::vector<PlacedPrimitive> own;
         auto converted = converted_meshes_.find(mesh_index);
-        if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
-        for (const PlacedPrimitive& primitive : converted->second) {
+        if (gltf::node_deforms_mesh(model_, node)) own = convert_mesh(mesh_index);
+        else if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
+        for (const PlacedPrimitive& primitive : gltf::node_deforms_mesh(model_, node) ? own : converted->second) {
+            object_nodes_.push_back(node);
             content_.objects.push_back(Object{primitive.mesh, primitive.material, world});
             content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world));
         }
@@ -318,6 +331,7 @@ private:
             for (const glm::vec3& position : converted.mesh.positions) bounds.add(position);
             mesh_bounds_.push_back(bounds);
             content_.meshes.push_back(std::move(converted.mesh));
+            mesh_sources_.push_back({mesh_index, int(p), std::move(converted.vertex_sources)});
             placed.push_back({std::uint32_t(content_.meshes.size() - 1), material_index(mesh.primitives[p].material, label)});
         }
         return placed;
@@ -500,6 +514,8 @@ private:
     std::string node_name_;  // of the node being walked
     std::map<int, std::vector<PlacedPrimitive>> converted_meshes_;   // glTF mesh -> its primitives' meshes
     std::vector<Bounds> mesh_bounds_;                                // per content_.meshes entry, object space
+    std::vector<gltf::MeshSource> mesh_sources_;                     // per content_.meshes entry: its glTF primitive
+    std::vector<int> object_nodes_;                                  // per content_.objects entry: its node
     std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
     std::map<int, gltf::UvMapping> uv_mappings_;                     // glTF material -> its maps' uvs
     std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
@@ -553,8 +569,17 @@ void append_gltf_content(Scene& scene, const GltfContent& content, const glm::ma
             if (slot->present()) slot->texture += first_texture;
         scene.materials.push_back(material);
     }
+    const auto first_object = std::uint32_t(scene.objects.size());
     for (const Object& object : content.objects)
         scene.objects.push_back(Object{object.mesh + first_mesh, object.material + first_material, placement * object.model});
+    if (content.rig) {
+        PosedGltfModel posed;
+        posed.rig = content.rig;
+        posed.first_mesh = first_mesh;
+        posed.first_object = first_object;
+        posed.placement = placement;
+        scene.posed_models.push_back(posed);
+    }
     if (!with_lights) return;
     for (Light light : content.lights) {
         light.position = glm::vec3(placement * glm::vec4(light.position, 1.0f));

@@ -11,12 +11,23 @@
 // - Primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (turned into triangle
 //   lists). POINTS and LINE* are not surfaces: skipped and counted
 //   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
-//   POSITION (required), NORMAL, TEXCOORD_n (the set the material's maps read; float, or normalized u8/u16),
-//   TANGENT and COLOR_0 (VEC3/VEC4, float or normalized u8/u16, into Mesh::colors: it multiplies the
-//   base colour and its alpha; floats clamped to [0, 1], NaN refused). Without NORMAL the primitive gets flat normals, as glTF requires
-//   (its vertices are split per triangle). Sparse accessors, accessors without a
-//   buffer view, morph targets and skins are not supported (skins: the mesh
-//   is drawn unskinned; sparse accessors are an error).
+//   POSITION (required), NORMAL and TANGENT as float, TEXCOORD_n (the set the
+//   material's maps read) as float or normalized u8/u16, COLOR_0 (VEC3/VEC4,
+//   float or normalized u8/u16, into Mesh::colors: it multiplies the base
+//   colour and its alpha; floats clamped to [0, 1], NaN refused); with
+//   KHR_mesh_quantization in extensionsUsed also the extension's types
+//   (positions and uvs: 8/16-bit integers, normalized or not; normals and
+//   tangents: normalized i8/i16). Without NORMAL the primitive gets
+//   flat normals, as glTF requires (its vertices are split per triangle).
+//   Accessors (gltf_accessors.hpp): sparse ones get their substitutions, ones
+//   without a buffer view are zeros (at most kMaxImplicitElements elements).
+//   Compressed geometry is decoded right after parsing (gltf_compression.hpp):
+//   EXT_meshopt_compression buffer views (every mode and filter; fallback
+//   buffers are never read) and KHR_draco_mesh_compression primitives.
+// - Skins, morph targets and animations: gltf_animation.hpp (GltfContent::rig).
+//   A node with a skin or a morphed mesh gets its own copy of the mesh, posed on
+//   the CPU at the rest pose (the nodes' own TRS and weights); skinned objects'
+//   model matrix is the identity (the spec ignores a skinned mesh's node).
 // - Materials (pbrMetallicRoughness): baseColorFactor.rgb × baseColorTexture
 //   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
@@ -95,6 +106,9 @@ struct GltfContent {
     // One line each, without the file name: what was ignored (extensions the
     // file uses that are not supported). import_gltf_file prints them.
     std::vector<std::string> warnings;
+    // Skins, morph targets and animations (gltf_animation.hpp), with meshes and
+    // objects above at the rest pose; null when nothing in the file can move.
+    std::shared_ptr<const GltfRig> rig;
 };
 
 struct GltfReadOptions {
@@ -111,7 +125,7 @@ GltfContent import_gltf_file(const std::filesystem::path& path);
 // (texture::build_times() splits the image stage by thread time).
 struct GltfImportTimes {
     std::atomic<std::int64_t> file_read_ns{0};  // the .gltf/.glb file (import_gltf_file)
-    std::atomic<std::int64_t> parse_ns{0};      // tinygltf, which also reads external buffers and image files
+    std::atomic<std::int64_t> parse_ns{0};      // tinygltf (which also reads external buffers and image files), and decoding Draco/meshopt geometry
     std::atomic<std::int64_t> convert_ns{0};    // the node walk: meshes, materials, lights
     std::atomic<std::int64_t> images_ns{0};     // decoding and mip-mapping the images, all threads
 };

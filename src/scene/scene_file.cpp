@@ -28,7 +28,7 @@
 //   inner_cone = 0.0                # spot: full radiance within this angle of direction, degrees; default 0
 //   outer_cone = 45.0               # spot: no radiance beyond it, degrees; default 45; 0 <= inner < outer <= 90
 //   range = 12.5                    # point and spot: a number > 0, or "auto"; default unlimited.
-//                                   # Past its range a light may be culled per tile (Light::range);
+//                                   # Past its range a light adds nothing (Light::range, light culling);
 //                                   # "auto" is where max(color) / d² falls to kAutoRangeIrradiance (1/4096)
 //   A key that does not apply to the light's type (position of a directional light,
 //   cones of a point light...) is an error.
@@ -72,6 +72,11 @@
 //   rotate = [0, 0, 0]              # each node's world transform is preceded by
 //   scale = 1                       # translate · Rz · Ry · Rx · scale
 //   lights = true                   # whether the file's KHR_lights_punctual lights are added; default true
+//   animation = 0                   # play the file's animation (an index, or its name) over
+//                                   #   [animation]'s frames: at frame f it is at
+//   animation_start = 0.0           #   animation_start + animation_speed · f / fps seconds
+//   animation_speed = 1.0           #   (start: seconds, finite; speed: finite); default: the model
+//   animation_loop = false          #   keeps its rest pose. loop: the time wraps at the animation's end
 //
 //   [animation]                     # frames, fps, camera orbit or keyframes, object and light
 //                                   # keyframes: format in src/scene/animation_file.cpp
@@ -113,6 +118,7 @@
 
 #include "scene/animation_eval.hpp"
 #include "scene/animation_file.hpp"
+#include "scene/gltf_animation.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "tessera/scene.hpp"
@@ -191,6 +197,7 @@ public:
         // [animation] (src/scene/animation_file.cpp): the scene as loaded is its frame 0.
         scene.animation = read_animation(root, source_, scene);
         set_scene_frame(scene, 0);
+        if (!scene.animation) pose_models_at_frame(scene, 0, 24.0);  // models playing from their start time
         return scene;
     }
 
@@ -698,7 +705,8 @@ private:
         for (std::size_t i = 0; i < models.size(); ++i) {
             const std::string name = "models[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*models.get(i), name);
-            check_keys(table, name, {"file", "translate", "rotate", "scale", "lights"});
+            check_keys(table, name, {"file", "translate", "rotate", "scale", "lights", "animation", "animation_start",
+                                     "animation_speed", "animation_loop"});
             const toml::node& file_node = require(table, "file", name);
             const std::filesystem::path file = base_dir_ / read_string(file_node, child(name, "file"));
             if (!is_gltf_path(file)) {
@@ -728,6 +736,46 @@ private:
                 finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
             }
             if (!finite) fail_at(table.source(), "placing '" + file.string() + "' by '" + name + "' gives a transform that is not finite");
+            read_model_animation(table, name, *content, scene);
+        }
+    }
+
+    // [[models]].animation and its timing: the model's entry in Scene::posed_models plays.
+    void read_model_animation(const toml::table& table, const std::string& name, const GltfContent& content,
+                              Scene& scene) const {
+        const toml::node* node = table.get("animation");
+        if (node == nullptr) {
+            for (const char* key : {"animation_start", "animation_speed", "animation_loop"})
+                if (const toml::node* n = table.get(key))
+                    fail_at(n->source(), "'" + child(name, key) + "' times the file's animation: give '" +
+                                             child(name, "animation") + "' too");
+            return;
+        }
+        const std::string key = child(name, "animation");
+        if (!content.rig || content.rig->animations.empty())
+            fail_at(node->source(), "'" + key + "' plays the file's animation, but the file has none");
+        PosedGltfModel& model = scene.posed_models.back();  // appended with the model's content
+        const std::vector<gltf::RigAnimation>& animations = content.rig->animations;
+        if (const auto* index = node->as_integer()) {
+            if (index->get() < 0 || std::uint64_t(index->get()) >= animations.size())
+                fail_at(node->source(), "expected '" + key + "' to be the index of one of the file's animations (" +
+                                            gltf::list_animations(*content.rig) + "), got " + std::to_string(index->get()));
+            model.animation = int(index->get());
+        } else if (const auto* text = node->as_string()) {
+            for (std::size_t a = 0; a < animations.size() && model.animation < 0; ++a)
+                if (animations[a].name == text->get()) model.animation = int(a);
+            if (model.animation < 0)
+                fail_at(node->source(), "expected '" + key + "' to name one of the file's animations (" +
+                                            gltf::list_animations(*content.rig) + "), got '" + text->get() + "'");
+        } else {
+            fail_type(*node, "an animation's index (an integer) or name (a string)", key);
+        }
+        if (const toml::node* n = table.get("animation_start")) model.start_seconds = read_number(*n, child(name, "animation_start"));
+        if (const toml::node* n = table.get("animation_speed")) model.speed = read_number(*n, child(name, "animation_speed"));
+        if (const toml::node* n = table.get("animation_loop")) {
+            const auto* flag = n->as_boolean();
+            if (flag == nullptr) fail_type(*n, "a boolean", child(name, "animation_loop"));
+            model.loop = flag->get();
         }
     }
 

@@ -48,32 +48,58 @@ IncidentLight incident_light(const Light& light, const glm::vec3& world_pos) {
     return {l, radiance * spot_cone_factor(light, -l)};
 }
 
+ShadingPoint shading_point(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                           const glm::vec3& cam_pos) {
+    return {world_pos, glm::normalize(normal), glm::normalize(cam_pos - world_pos),
+            glm::mix(glm::vec3(0.04f), material.albedo, material.metallic), material};
+}
+
+glm::vec3 reflected_radiance(const ShadingPoint& p, const Light& light) {
+    const glm::vec3& albedo = p.material.albedo;
+    const float metallic = p.material.metallic;
+    const float roughness = p.material.roughness;
+    const glm::vec3 &n = p.n, &v = p.v;
+    const auto [l, radiance] = incident_light(light, p.world_pos);
+    const glm::vec3 h = glm::normalize(v + l);
+
+    const float ndf = distribution_ggx(n, h, roughness);
+    const float g = geometry_smith(n, v, l, roughness);
+    const glm::vec3 f = fresnel_schlick(glm::max(glm::dot(h, v), 0.0f), p.f0);
+
+    const glm::vec3 k_d = (glm::vec3(1.0f) - f) * (1.0f - metallic);
+    const glm::vec3 specular =
+        ndf * g * f / (4.0f * glm::max(glm::dot(n, v), 0.0f) * glm::max(glm::dot(n, l), 0.0f) + 0.0001f);
+    const float n_dot_l = glm::max(glm::dot(n, l), 0.0f);
+    return (k_d * albedo / kPi + specular) * radiance * n_dot_l;
+}
+
+glm::vec3 ambient_radiance(const Material& material) { return glm::vec3(0.03f) * material.albedo * material.ao; }
+
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
                     const glm::vec3& cam_pos, std::span<const Light> lights) {
-    const glm::vec3& albedo = material.albedo;
-    const float metallic = material.metallic;
-    const float roughness = material.roughness;
-
-    const glm::vec3 n = glm::normalize(normal);
-    const glm::vec3 v = glm::normalize(cam_pos - world_pos);
-    const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);
-
+    const ShadingPoint p = shading_point(world_pos, normal, material, cam_pos);
     glm::vec3 lo(0.0f);
-    for (const Light& light : lights) {
-        const auto [l, radiance] = incident_light(light, world_pos);
-        const glm::vec3 h = glm::normalize(v + l);
+    for (const Light& light : lights) lo += reflected_radiance(p, light);
+    return ambient_radiance(material) + lo;
+}
 
-        const float ndf = distribution_ggx(n, h, roughness);
-        const float g = geometry_smith(n, v, l, roughness);
-        const glm::vec3 f = fresnel_schlick(glm::max(glm::dot(h, v), 0.0f), f0);
+float distance_squared(const glm::vec3& a, const glm::vec3& b) {
+    const glm::vec3 d = a - b;
+    return (d.x * d.x + d.y * d.y) + d.z * d.z;
+}
 
-        const glm::vec3 k_d = (glm::vec3(1.0f) - f) * (1.0f - metallic);
-        const glm::vec3 specular =
-            ndf * g * f / (4.0f * glm::max(glm::dot(n, v), 0.0f) * glm::max(glm::dot(n, l), 0.0f) + 0.0001f);
-        const float n_dot_l = glm::max(glm::dot(n, l), 0.0f);
-        lo += (k_d * albedo / kPi + specular) * radiance * n_dot_l;
-    }
-    return glm::vec3(0.03f) * albedo * material.ao + lo;
+bool light_reaches(const Light& light, const glm::vec3& world_pos) {
+    return light.type == LightType::directional || !(light.range > 0.0f) ||
+           distance_squared(light.position, world_pos) <= light.range * light.range;
+}
+
+glm::vec3 shade_pbr_within_range(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                                 const glm::vec3& cam_pos, std::span<const Light> lights) {
+    const ShadingPoint p = shading_point(world_pos, normal, material, cam_pos);
+    glm::vec3 lo(0.0f);
+    for (const Light& light : lights)
+        if (light_reaches(light, world_pos)) lo += reflected_radiance(p, light);
+    return ambient_radiance(material) + lo;
 }
 
 glm::vec3 tonemap_reinhard(const glm::vec3& hdr) { return hdr / (hdr + glm::vec3(1.0f)); }

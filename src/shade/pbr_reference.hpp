@@ -38,6 +38,29 @@ IncidentLight incident_light(const Light& light, const glm::vec3& world_pos);
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
                     const glm::vec3& cam_pos, std::span<const Light> lights);
 
+// |a − b|² as (dx² + dy²) + dz² in float, the order the SIMD kernels use too
+// (without fused multiply-adds), so that every path draws a range's edge alike.
+float distance_squared(const glm::vec3& a, const glm::vec3& b);
+// Whether `light` lights world_pos at all: no range (Light::range = 0, and
+// directional lights), or distance_squared(position, world_pos) <= range².
+bool light_reaches(const Light& light, const glm::vec3& world_pos);
+// shade_pbr with ranges: a light adds nothing to a point past its range (the
+// renderer with light culling on). The same bits as shade_pbr over the lights
+// that reach world_pos.
+glm::vec3 shade_pbr_within_range(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                                 const glm::vec3& cam_pos, std::span<const Light> lights);
+
+// shade_pbr's pieces: what does not depend on the light, one light's
+// reflected radiance (the GLSL's loop body), and the ambient term.
+struct ShadingPoint {
+    glm::vec3 world_pos, n, v, f0;  // n, v unit
+    const Material& material;
+};
+ShadingPoint shading_point(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                           const glm::vec3& cam_pos);
+glm::vec3 reflected_radiance(const ShadingPoint& p, const Light& light);
+glm::vec3 ambient_radiance(const Material& material);
+
 // Reinhard c / (c + 1), then gamma c^(1/2.2): display-referred, in [0, 1].
 glm::vec3 tonemap_reinhard(const glm::vec3& hdr);
 glm::vec3 gamma_encode(const glm::vec3& linear);

@@ -14,6 +14,8 @@ namespace tessera::shade {
 #define TESSERA_DECLARE_SIMD_ENTRIES(suffix)                                                                  \
     void shade_fragments_##suffix(const FragmentInputs& in, const LightArrays& lights, const glm::vec3& cam_pos, \
                                   const RadianceOutputs& out);                                                 \
+    void shade_fragments_in_range_##suffix(const FragmentInputs& in, const LightArrays& lights,                  \
+                                           const glm::vec3& cam_pos, const RadianceOutputs& out);              \
     void tonemap_gamma_##suffix(std::size_t count, float* r, float* g, float* b);
 TESSERA_DECLARE_SIMD_ENTRIES(sse4)
 TESSERA_DECLARE_SIMD_ENTRIES(avx2)
@@ -39,23 +41,14 @@ void push_light(ShadingLights& soa, const Light& light) {
     soa.cos_outer.push_back(cos_outer);
     soa.inv_cone_width.push_back(light.type == LightType::spot ? 1.0f / (cos_inner - cos_outer) : 0.0f);
     soa.range.push_back(light.type == LightType::directional ? 0.0f : light.range);
+    soa.range_sq.push_back(soa.range.back() * soa.range.back());
     soa.records.push_back(light);
-}
-
-// Appends light j of `all`, its constants already worked out.
-void copy_light(ShadingLights& soa, const ShadingLights& all, std::size_t j) {
-    for (auto column : {&ShadingLights::pos_x, &ShadingLights::pos_y, &ShadingLights::pos_z, &ShadingLights::color_r,
-                        &ShadingLights::color_g, &ShadingLights::color_b, &ShadingLights::dir_x, &ShadingLights::dir_y,
-                        &ShadingLights::dir_z, &ShadingLights::cos_outer, &ShadingLights::inv_cone_width,
-                        &ShadingLights::range})
-        (soa.*column).push_back((all.*column)[j]);
-    soa.records.push_back(all.records[j]);
 }
 
 void clear_columns(ShadingLights& soa) {
     for (std::vector<float>* column : {&soa.pos_x, &soa.pos_y, &soa.pos_z, &soa.color_r, &soa.color_g, &soa.color_b,
                                        &soa.dir_x, &soa.dir_y, &soa.dir_z, &soa.cos_outer, &soa.inv_cone_width,
-                                       &soa.range})
+                                       &soa.range, &soa.range_sq})
         column->clear();
     soa.records.clear();
     soa.spot_begin = soa.directional_begin = 0;
@@ -66,7 +59,7 @@ void clear_columns(ShadingLights& soa) {
 
 void ShadingLights::reserve(std::size_t capacity) {
     for (std::vector<float>* column : {&pos_x, &pos_y, &pos_z, &color_r, &color_g, &color_b, &dir_x, &dir_y, &dir_z,
-                                       &cos_outer, &inv_cone_width, &range})
+                                       &cos_outer, &inv_cone_width, &range, &range_sq})
         column->reserve(capacity);
     records.reserve(capacity);
 }
@@ -84,37 +77,11 @@ void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Lig
     for (const float r : range) any_range = any_range || r > 0.0f;
 }
 
-WorldBounds fragment_bounds(const FragmentInputs& in) {
-    WorldBounds b{{in.world_x[0], in.world_y[0], in.world_z[0]}, {in.world_x[0], in.world_y[0], in.world_z[0]}};
-    for (std::size_t i = 1; i < in.count; ++i) {
-        const glm::vec3 p(in.world_x[i], in.world_y[i], in.world_z[i]);
-        b.min = glm::min(b.min, p);
-        b.max = glm::max(b.max, p);
-    }
-    return b;
-}
-
-const ShadingLights& lights_reaching(const ShadingLights& all, const WorldBounds& bounds, ShadingLights& subset) {
-    if (!all.any_range) return all;
-    clear_columns(subset);
-    subset.cam_pos = all.cam_pos;
-    for (std::size_t j = 0; j < all.count(); ++j) {
-        if (j == all.spot_begin) subset.spot_begin = subset.count();
-        if (j == all.directional_begin) subset.directional_begin = subset.count();
-        const float range = all.range[j];
-        if (range > 0.0f) {
-            // Squared distance from the light to the nearest point of the box.
-            const glm::vec3 position(all.pos_x[j], all.pos_y[j], all.pos_z[j]);
-            const glm::vec3 gap = glm::max(glm::max(bounds.min - position, position - bounds.max), glm::vec3(0.0f));
-            if (glm::dot(gap, gap) > range * range) continue;
-        }
-        copy_light(subset, all, j);
-    }
-    // Groups that end at the very end were never reached in the loop.
-    if (all.spot_begin == all.count()) subset.spot_begin = subset.count();
-    if (all.directional_begin == all.count()) subset.directional_begin = subset.count();
-    subset.any_range = true;
-    return subset;
+void LightSelection::assign_all(const ShadingLights& lights) {
+    index.resize(lights.count());
+    for (std::size_t j = 0; j < index.size(); ++j) index[j] = std::uint32_t(j);
+    spot_begin = lights.spot_begin;
+    directional_begin = lights.directional_begin;
 }
 
 namespace {
@@ -134,6 +101,27 @@ void shade_fragments_scalar(const FragmentInputs& in, const ShadingLights& light
     }
 }
 
+void shade_fragments_in_range_scalar(const FragmentInputs& in, const ShadingLights& lights,
+                                     const LightSelection& selection, const RadianceOutputs& out) {
+    for (std::size_t i = 0; i < in.count; ++i) {
+        const glm::vec3 world_pos = load_vec3(in.world_x, in.world_y, in.world_z, i);
+        const Material material{.albedo = load_vec3(in.albedo_r, in.albedo_g, in.albedo_b, i), .metallic = in.metallic[i],
+                                .roughness = in.roughness[i], .ao = in.ao[i]};
+        // shade_pbr_within_range over the selected lights, without copying them out.
+        const ShadingPoint p =
+            shading_point(world_pos, load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos);
+        glm::vec3 lo(0.0f);
+        for (const std::uint32_t j : selection.index) {
+            const Light& light = lights.records[j];
+            if (light_reaches(light, world_pos)) lo += reflected_radiance(p, light);
+        }
+        const glm::vec3 radiance = ambient_radiance(material) + lo;
+        out.r[i] = radiance.r;
+        out.g[i] = radiance.g;
+        out.b[i] = radiance.b;
+    }
+}
+
 void tonemap_gamma_scalar(std::size_t count, float* r, float* g, float* b) {
     for (std::size_t i = 0; i < count; ++i) {
         const glm::vec3 display = display_from_radiance({r[i], g[i], b[i]});
@@ -143,20 +131,38 @@ void tonemap_gamma_scalar(std::size_t count, float* r, float* g, float* b) {
     }
 }
 
+LightArrays light_arrays(const ShadingLights& lights) {
+    return {lights.spot_begin,          lights.directional_begin, lights.count(),       lights.pos_x.data(),
+            lights.pos_y.data(),        lights.pos_z.data(),      lights.color_r.data(), lights.color_g.data(),
+            lights.color_b.data(),      lights.dir_x.data(),      lights.dir_y.data(),   lights.dir_z.data(),
+            lights.cos_outer.data(),    lights.inv_cone_width.data(), lights.range.data(), lights.range_sq.data(),
+            nullptr};
+}
+
 }  // namespace
 
 void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
     simd::require_supported(isa);
-    const LightArrays arrays{lights.spot_begin,       lights.directional_begin, lights.count(),
-                             lights.pos_x.data(),     lights.pos_y.data(),      lights.pos_z.data(),
-                             lights.color_r.data(),   lights.color_g.data(),    lights.color_b.data(),
-                             lights.dir_x.data(),     lights.dir_y.data(),      lights.dir_z.data(),
-                             lights.cos_outer.data(), lights.inv_cone_width.data()};
+    const LightArrays arrays = light_arrays(lights);
     switch (isa) {
         case Isa::scalar: return shade_fragments_scalar(in, lights, out);
         case Isa::sse4: return shade_fragments_sse4(in, arrays, lights.cam_pos, out);
         case Isa::avx2: return shade_fragments_avx2(in, arrays, lights.cam_pos, out);
         case Isa::avx512: return shade_fragments_avx512(in, arrays, lights.cam_pos, out);
+    }
+}
+
+void shade_fragments_in_range(Isa isa, const FragmentInputs& in, const ShadingLights& lights,
+                              const LightSelection& selection, const RadianceOutputs& out) {
+    simd::require_supported(isa);
+    LightArrays arrays = light_arrays(lights);
+    arrays.spot_begin = selection.spot_begin, arrays.directional_begin = selection.directional_begin;
+    arrays.count = selection.count(), arrays.index = selection.index.data();
+    switch (isa) {
+        case Isa::scalar: return shade_fragments_in_range_scalar(in, lights, selection, out);
+        case Isa::sse4: return shade_fragments_in_range_sse4(in, arrays, lights.cam_pos, out);
+        case Isa::avx2: return shade_fragments_in_range_avx2(in, arrays, lights.cam_pos, out);
+        case Isa::avx512: return shade_fragments_in_range_avx512(in, arrays, lights.cam_pos, out);
     }
 }
 

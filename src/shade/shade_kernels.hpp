@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -44,12 +45,6 @@ struct RadianceOutputs {
     float* b = nullptr;
 };
 
-// Bounds of a set of world-space points (a tile's visible fragments).
-struct WorldBounds {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
-};
-
 // The lights and camera in SoA form, built once per frame, grouped by type so
 // that the kernels branch per group, never per lane or per light: points
 // [0, spot_begin), spots [spot_begin, directional_begin), directionals
@@ -65,6 +60,7 @@ struct ShadingLights {
     // inv_cone_width = 1/(cos inner − cos outer).
     std::vector<float> cos_outer, inv_cone_width;
     std::vector<float> range;                  // Light::range; 0 = never culled
+    std::vector<float> range_sq;               // range·range (float), the edge shade_fragments_in_range cuts at
     std::vector<Light> records;                // the same lights as given, for the scalar path
     bool any_range = false;                    // whether culling could drop any light at all
 
@@ -75,23 +71,28 @@ struct ShadingLights {
     void reserve(std::size_t capacity);
 };
 
+// Some of a ShadingLights' lights: indices into it, in its type-group order,
+// and where the spots and directionals begin among them (light culling).
+struct LightSelection {
+    std::vector<std::uint32_t> index;
+    std::size_t spot_begin = 0, directional_begin = 0;
+
+    std::size_t count() const { return index.size(); }
+    // Every light of `lights`.
+    void assign_all(const ShadingLights& lights);
+};
+
 // The raw arrays of ShadingLights, as the per-ISA kernels take them (no
 // std::vector code is compiled for a wider ISA and shared with baseline callers).
+// With `index`, the kernels shade lights index[0 .. count) (the group bounds
+// counting in it) and cut each at its range; without, lights 0 .. count, uncut.
 struct LightArrays {
     std::size_t spot_begin, directional_begin, count;
     const float *pos_x, *pos_y, *pos_z, *color_r, *color_g, *color_b, *dir_x, *dir_y, *dir_z, *cos_outer,
-        *inv_cone_width;
+        *inv_cone_width, *range, *range_sq;
+    const std::uint32_t* index;
 };
 
-// The axis-aligned bounds of fragments' world positions; count > 0.
-WorldBounds fragment_bounds(const FragmentInputs& in);
-
-// Per-tile light culling: every light of `all` whose range sphere reaches
-// `bounds`, and every light without a range, into `subset` (type groups and
-// order kept). Returns `all` itself when no light has a range, so that culling
-// cannot change such scenes by a bit. `subset` should be reserved for
-// all.count() lights beforehand; then this allocates nothing.
-const ShadingLights& lights_reaching(const ShadingLights& all, const WorldBounds& bounds, ShadingLights& subset);
 // Which code runs the kernels. `scalar` calls the reference shader per fragment.
 using simd::Isa;
 using simd::isa_name;
@@ -100,6 +101,12 @@ using simd::best_supported_isa;
 
 // HDR radiance of every fragment: out = shade_pbr(in[i]) for i < in.count.
 void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out);
+// The same over the selected lights, each cut at its range per fragment:
+// out = shade_pbr_within_range(in[i], selected lights). Lights left out of
+// `selection` must reach none of the fragments (light_culling.hpp makes such
+// selections), so that the result is the same for any such selection.
+void shade_fragments_in_range(Isa isa, const FragmentInputs& in, const ShadingLights& lights,
+                              const LightSelection& selection, const RadianceOutputs& out);
 
 // In place, over `count` (padded) values per channel: Reinhard then gamma 1/2.2,
 // the display values PNG output quantizes.

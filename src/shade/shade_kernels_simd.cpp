@@ -61,8 +61,11 @@ struct Surface {
 // lo += one light's reflected radiance: l is the unit direction towards the
 // light, attenuation the radiance arriving per unit of light colour. Always
 // inlined: a call would move the accumulators through memory in the hot loop.
+// Accumulate(lo_c, term) adds one channel's term: all lanes, or (InRange) the
+// lanes the light reaches.
+template <class Accumulate>
 [[gnu::always_inline]] inline void add_light(Vec3& lo, const Surface& s, const Vec3& l, const Batch& attenuation, float color_r,
-                      float color_g, float color_b) {
+                      float color_g, float color_b, Accumulate&& accumulate) {
     const Vec3 half = s.v + l;
     const Batch inv_half_length = inverse_length(half);
 
@@ -82,13 +85,23 @@ struct Surface {
     // lo += (k_D·albedo/π + specular) · radiance · N·L, per channel
     const auto add_channel = [&](Batch& lo_c, const Batch& f0_c, const Batch& diffuse_c, float color_c) {
         const Batch f = fresnel_schlick(fresnel_weight, f0_c);
-        lo_c += ((Batch(1.0f) - f) * diffuse_c + specular_scale * f) * (irradiance_scale * Batch(color_c));
+        accumulate(lo_c, ((Batch(1.0f) - f) * diffuse_c + specular_scale * f) * (irradiance_scale * Batch(color_c)));
     };
     add_channel(lo.x, s.f0.x, s.diffuse.x, color_r);
     add_channel(lo.y, s.f0.y, s.diffuse.y, color_g);
     add_channel(lo.z, s.f0.z, s.diffuse.z, color_b);
 }
 
+// Light k of the batch's list: light k itself, or (InRange) light index[k].
+template <bool InRange>
+[[gnu::always_inline]] inline std::size_t light_id(const LightArrays& lights, std::size_t k) {
+    if constexpr (InRange) return lights.index[k];
+    else return k;
+}
+
+// InRange: each light is cut at its range, lane by lane (shade_pbr_within_range);
+// otherwise every light reaches every lane (shade_pbr).
+template <bool InRange>
 void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
                  const RadianceOutputs& out) {
     Surface s;
@@ -117,19 +130,47 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
     const Batch diffuse_scale = (Batch(1.0f) - metallic) * Batch(1.0f / kPi);
     s.diffuse = albedo * diffuse_scale;
 
+    const auto add_all = [](Batch& lo_c, const Batch& term) { lo_c += term; };
+    // A point or spot light: which lanes it reaches (all without InRange or
+    // without a range), and 1/distance to it. Returns false where it reaches
+    // none: the light is skipped, which adds the same as adding nothing per lane.
+    Mask reaches(true);
+    Batch inv_distance;
+    const auto reach = [&](std::size_t j, const Vec3& to_light) {
+        if constexpr (InRange) {
+            const Batch distance_sq = length_squared_unfused(to_light);
+            if (lights.range[j] > 0.0f) {
+                reaches = distance_sq <= Batch(lights.range_sq[j]);
+                if (!xsimd::any(reaches)) return false;
+            } else {
+                reaches = Mask(true);
+            }
+            inv_distance = Batch(1.0f) / xsimd::sqrt(distance_sq);
+        } else {
+            inv_distance = inverse_length(to_light);
+        }
+        return true;
+    };
+    const auto add_reached = [&](Batch& lo_c, const Batch& term) {
+        if constexpr (InRange) lo_c = xsimd::select(reaches, lo_c + term, lo_c);
+        else lo_c += term;
+    };
+
     // One loop per light type: the type is uniform over a light, so it costs no lane math.
     Vec3 lo = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
-    for (std::size_t j = 0; j < lights.spot_begin; ++j) {  // point: radiance = color / distance²
+    for (std::size_t k = 0; k < lights.spot_begin; ++k) {  // point: radiance = color / distance²
+        const std::size_t j = light_id<InRange>(lights, k);
         const Vec3 to_light =
             Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        const Batch inv_distance = inverse_length(to_light);
+        if (!reach(j, to_light)) continue;
         add_light(lo, s, to_light * inv_distance, inv_distance * inv_distance, lights.color_r[j], lights.color_g[j],
-                  lights.color_b[j]);
+                  lights.color_b[j], add_reached);
     }
-    for (std::size_t j = lights.spot_begin; j < lights.directional_begin; ++j) {  // spot: a point light × cone factor
+    for (std::size_t k = lights.spot_begin; k < lights.directional_begin; ++k) {  // spot: a point light × cone factor
+        const std::size_t j = light_id<InRange>(lights, k);
         const Vec3 to_light =
             Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        const Batch inv_distance = inverse_length(to_light);
+        if (!reach(j, to_light)) continue;
         const Vec3 l = to_light * inv_distance;
         // cos θ = direction · (light to fragment) = −(direction · L)
         const Batch cos_theta = -dot(Vec3{Batch(lights.dir_x[j]), Batch(lights.dir_y[j]), Batch(lights.dir_z[j])}, l);
@@ -137,11 +178,12 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
         // clamp to [0, 1], NaN first so that it becomes 0
         const Batch cone_factor = xsimd::min(xsimd::max(cone, Batch(0.0f)), Batch(1.0f));
         add_light(lo, s, l, inv_distance * inv_distance * cone_factor, lights.color_r[j], lights.color_g[j],
-                  lights.color_b[j]);
+                  lights.color_b[j], add_reached);
     }
-    for (std::size_t j = lights.directional_begin; j < lights.count; ++j) {  // directional: L = −direction, no attenuation
+    for (std::size_t k = lights.directional_begin; k < lights.count; ++k) {  // directional: L = −direction, no attenuation
+        const std::size_t j = light_id<InRange>(lights, k);
         const Vec3 l = {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
-        add_light(lo, s, l, Batch(1.0f), lights.color_r[j], lights.color_g[j], lights.color_b[j]);
+        add_light(lo, s, l, Batch(1.0f), lights.color_r[j], lights.color_g[j], lights.color_b[j], add_all);
     }
 
     const Batch ambient = Batch(0.03f) * ao;
@@ -164,7 +206,14 @@ void TESSERA_SIMD_ENTRY(shade_fragments)(const FragmentInputs& in, const LightAr
                                          const RadianceOutputs& out) {
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
     const std::size_t end = padded_count(in.count);
-    for (std::size_t i = 0; i < end; i += Batch::size) shade_batch(in, i, lights, cam, out);
+    for (std::size_t i = 0; i < end; i += Batch::size) shade_batch<false>(in, i, lights, cam, out);
+}
+
+void TESSERA_SIMD_ENTRY(shade_fragments_in_range)(const FragmentInputs& in, const LightArrays& lights,
+                                                  const glm::vec3& cam_pos, const RadianceOutputs& out) {
+    const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
+    const std::size_t end = padded_count(in.count);
+    for (std::size_t i = 0; i < end; i += Batch::size) shade_batch<true>(in, i, lights, cam, out);
 }
 
 void TESSERA_SIMD_ENTRY(tonemap_gamma)(std::size_t count, float* r, float* g, float* b) {

@@ -41,6 +41,17 @@ inline Vec3 select(const Mask& m, const Vec3& a, const Vec3& b) {
 inline Batch inverse_length(const Vec3& a) { return Batch(1.0f) / xsimd::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a * inverse_length(a); }
 
+// |a|² as (x² + y²) + z², the products rounded before the sums as the scalar
+// distance_squared (pbr_reference.hpp) rounds them: the empty asm hides them
+// from the compiler, which would otherwise fuse them into FMAs on some ISAs
+// and not on others (xsimd has no way to forbid that), and a range's edge
+// would fall differently.
+inline Batch length_squared_unfused(const Vec3& a) {
+    Batch x = a.x * a.x, y = a.y * a.y, z = a.z * a.z;
+    asm("" : "+x"(x.data), "+x"(y.data), "+x"(z.data));
+    return (x + y) + z;
+}
+
 // Lanes i .. i + Batch::size of three planes.
 inline Vec3 load3(const float* x, const float* y, const float* z, std::size_t i) {
     return {xsimd::load_unaligned(x + i), xsimd::load_unaligned(y + i), xsimd::load_unaligned(z + i)};

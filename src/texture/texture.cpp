@@ -6,7 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <initializer_list>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -14,14 +19,14 @@
 #include <system_error>
 #include <utility>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <sys/mman.h>
 
 #include "simd/lane_padding.hpp"
+#include "texture/image_decoders.hpp"
+#include "texture/oiio_module_loader.hpp"
 
 namespace tessera::texture {
 
@@ -134,9 +139,17 @@ const std::array<float, 256>& unorm8_table() {
     return table;
 }
 
-std::uint8_t encode_unorm8(float linear) {
-    return static_cast<std::uint8_t>(std::floor(clamp_nan_low(linear, 0.0f, 1.0f) * 255.0f + 0.5f));
+namespace {
+
+// round(255·x) for x clamped to [0, 1]: floor(255·x + ½), and floor is the
+// integer conversion for these non-negative values (no libm call).
+inline std::uint8_t unorm8_from_linear(float linear) {
+    return static_cast<std::uint8_t>(static_cast<int>(clamp_nan_low(linear, 0.0f, 1.0f) * 255.0f + 0.5f));
 }
+
+}  // namespace
+
+std::uint8_t encode_unorm8(float linear) { return unorm8_from_linear(linear); }
 
 namespace {
 
@@ -172,12 +185,14 @@ struct SrgbEncoder {
     }
 };
 
+const SrgbEncoder& srgb_encoder() {
+    static const SrgbEncoder encoder;
+    return encoder;
+}
+
 }  // namespace
 
-std::uint8_t encode_srgb8(float linear) {
-    static const SrgbEncoder encoder;
-    return encoder.encode(linear);
-}
+std::uint8_t encode_srgb8(float linear) { return srgb_encoder().encode(linear); }
 
 TextureBuildTimes& build_times() {
     static TextureBuildTimes times;
@@ -281,46 +296,128 @@ Texture Texture::from_pixels(int width, int height, int channels, const std::uin
     return texture;
 }
 
-// Decodes an opened image into level 0, then builds the mips.
+// Decodes an image into level 0, then builds the mips. PNG and JPEG by
+// image_decoders.hpp, other formats through OpenImageIO's module.
 struct ImageDecoder {
-    static Texture decode(OIIO::ImageInput& input, const std::string& source, ColorSpace color_space);
+    // `header_prefix`: "cannot read image" (a file) or "cannot decode image" (bytes in memory).
+    static Texture decode_bytes(std::span<const std::uint8_t> bytes, const std::string& source,
+                                ColorSpace color_space, PngAlpha png_alpha, const char* header_prefix);
+    static Texture decode_with_module(const std::filesystem::path& path, const std::string& source,
+                                      ColorSpace color_space);
 };
 
-Texture ImageDecoder::decode(OIIO::ImageInput& input, const std::string& source, ColorSpace color_space) {
-    const OIIO::ImageSpec& spec = input.spec();
-    check_size(source, spec.width, spec.height);
-    if (spec.depth > 1) fail(source, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
-    if (spec.nchannels < 1) fail(source, "no channels");
-
+Texture ImageDecoder::decode_bytes(std::span<const std::uint8_t> bytes, const std::string& source,
+                                   ColorSpace color_space, PngAlpha png_alpha, const char* header_prefix) {
     Texture texture;
-    texture.allocate(spec.width, spec.height, color_space);
-    // Decoded in bands of rows straight to 8 bits (OpenImageIO rounds 16-bit
-    // and float data), each band expanded into level 0: no full-size copy of
-    // the image besides the texture itself.
-    const int channels = std::min(spec.nchannels, 4);
-    const std::size_t row_texels = static_cast<std::size_t>(spec.width);
-    const int band_rows = std::max(1, std::min(spec.height, static_cast<int>((1 << 20) / (row_texels * 4) + 1)));
-    std::vector<std::uint8_t> band(row_texels * static_cast<std::size_t>(band_rows) * static_cast<std::size_t>(channels));
-    std::int64_t decode_ns = 0, upload_ns = 0;
-    for (int y = 0; y < spec.height; y += band_rows) {
-        const int y_end = std::min(spec.height, y + band_rows);
-        std::uint32_t* level0_rows = texture.texels_.get() + static_cast<std::size_t>(y) * row_texels;
-        const bool direct = channels == 4;  // RGBA8 is the file's layout: decode in place
-        auto start = std::chrono::steady_clock::now();
-        if (!input.read_scanlines(0, 0, spec.y + y, spec.y + y_end, 0, 0, channels, OIIO::TypeDesc::UINT8,
-                                  direct ? static_cast<void*>(level0_rows) : band.data()))
-            fail(source, "truncated or corrupt image data: " + one_line(input.geterror()));
-        decode_ns += nanoseconds_since(start);
-        if (direct) continue;
-        start = std::chrono::steady_clock::now();
-        expand_to_rgba8(band.data(), channels, row_texels * static_cast<std::size_t>(y_end - y), level0_rows);
-        upload_ns += nanoseconds_since(start);
+    const Level0Allocator allocate = [&](int width, int height) {
+        check_size(source, width, height);
+        texture.allocate(width, height, color_space);
+        return texture.texels_.get();
+    };
+    // Decoding writes RGBA8 straight into level 0: there is no separate upload.
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        if (has_png_signature(bytes)) decode_png(bytes, png_alpha, allocate);
+        else decode_jpeg(bytes, allocate);
+    } catch (const ImageDecodeError& e) {
+        fail(source, (e.header() ? std::string(header_prefix) + ": " : "truncated or corrupt image data: ") +
+                         one_line(e.what()));
     }
-    build_times().decode_ns += decode_ns;
-    build_times().upload_ns += upload_ns;
+    build_times().decode_ns += nanoseconds_since(start);
     texture.build_mip_chain();
     return texture;
 }
+
+namespace {
+
+// The module's sink: level 0 of `texture`, filled band by band; an exception
+// thrown here is kept and rethrown once the module has returned.
+struct ModuleSink {
+    const std::string* source;
+    ColorSpace color_space;
+    Texture* texture;
+    std::uint32_t* level0 = nullptr;
+    int width = 0;
+    int channels = 0;
+    std::exception_ptr failure;
+    std::int64_t upload_ns = 0;
+};
+
+}  // namespace
+
+Texture ImageDecoder::decode_with_module(const std::filesystem::path& path, const std::string& source,
+                                         ColorSpace color_space) {
+    const TesseraReadImage read_image = oiio_module_reader(source);
+    Texture texture;
+    ModuleSink sink_state{&source, color_space, &texture, nullptr, 0, 0, nullptr, 0};
+    const auto begin = [](void* context, int width, int height, int depth, int channels) -> int {
+        auto* s = static_cast<ModuleSink*>(context);
+        try {
+            check_size(*s->source, width, height);
+            if (depth > 1) fail(*s->source, "volume images are not supported (depth " + std::to_string(depth) + ")");
+            if (channels < 1) fail(*s->source, "no channels");
+            s->texture->allocate(width, height, s->color_space);
+            s->level0 = s->texture->texels_.get();
+            s->width = width;
+            s->channels = std::min(channels, 4);
+            return 1;
+        } catch (...) {
+            s->failure = std::current_exception();
+            return 0;
+        }
+    };
+    const auto rows = [](void* context, int y_begin, int y_end, const std::uint8_t* samples) -> int {
+        auto* s = static_cast<ModuleSink*>(context);
+        const auto start = std::chrono::steady_clock::now();
+        expand_to_rgba8(samples, s->channels, std::size_t(s->width) * std::size_t(y_end - y_begin),
+                        s->level0 + std::size_t(y_begin) * std::size_t(s->width));
+        s->upload_ns += nanoseconds_since(start);
+        return 1;
+    };
+    const TesseraImageSink sink{&sink_state, begin, rows};
+    char error[512] = "";
+    int header_failed = 0;
+    const auto start = std::chrono::steady_clock::now();
+    const int ok = read_image(path.c_str(), &sink, error, sizeof error, &header_failed);
+    if (sink_state.failure) std::rethrow_exception(sink_state.failure);
+    if (!ok)
+        fail(source, (header_failed ? "cannot read image: " : "truncated or corrupt image data: ") + one_line(error));
+    build_times().decode_ns += nanoseconds_since(start) - sink_state.upload_ns;
+    build_times().upload_ns += sink_state.upload_ns;
+    texture.build_mip_chain();
+    return texture;
+}
+
+namespace {
+
+bool has_extension(const std::filesystem::path& path, std::initializer_list<const char*> extensions) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* e : extensions)
+        if (ext == e) return true;
+    return false;
+}
+
+// The whole file, or its first `limit` bytes.
+std::vector<std::uint8_t> read_bytes(const std::filesystem::path& path, const std::string& source,
+                                     std::size_t limit = std::size_t(-1)) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) fail(source, std::string("cannot read image: cannot open the file: ") + std::strerror(errno));
+    std::vector<std::uint8_t> bytes;
+    std::uint8_t chunk[65536];
+    while (bytes.size() < limit) {
+        const std::size_t want = std::min(sizeof chunk, limit - bytes.size());
+        const std::size_t got = std::fread(chunk, 1, want, file);
+        bytes.insert(bytes.end(), chunk, chunk + got);
+        if (got < want) break;
+    }
+    const bool failed = std::ferror(file) != 0;
+    std::fclose(file);
+    if (failed) fail(source, "cannot read image: read error");
+    return bytes;
+}
+
+}  // namespace
 
 Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space) {
     const std::string source = "texture " + quoted(path);
@@ -329,37 +426,28 @@ Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space)
     if (!std::filesystem::is_regular_file(path, error)) fail(source, "not a regular file");
     if (std::filesystem::file_size(path, error) == 0 && !error) fail(source, "empty file (0 bytes)");
 
-    // Straight (unassociated) alpha as stored: OpenImageIO would otherwise
-    // premultiply PNG colour by alpha, in the encoded (sRGB) values.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
+    // The format is told by the bytes; a .png or .jpg file that is neither is
+    // refused here, anything else goes to OpenImageIO.
     const auto start = std::chrono::steady_clock::now();
-    auto input = OIIO::ImageInput::open(path.string(), &config);
+    const std::vector<std::uint8_t> signature = read_bytes(path, source, 8);
+    if (!has_png_signature(signature) && !has_jpeg_signature(signature)) {
+        if (has_extension(path, {".png", ".jpg", ".jpeg"}))
+            fail(source, "cannot read image: neither a PNG nor a JPEG file (bad signature)");
+        return ImageDecoder::decode_with_module(path, source, color_space);
+    }
+    const std::vector<std::uint8_t> bytes = read_bytes(path, source);
     build_times().decode_ns += nanoseconds_since(start);
-    if (!input) fail(source, "cannot read image: " + one_line(OIIO::geterror()));
-    return ImageDecoder::decode(*input, source, color_space);
+    // Straight (unassociated) alpha as stored.
+    return ImageDecoder::decode_bytes(bytes, source, color_space, PngAlpha::straight, "cannot read image");
 }
 
 Texture Texture::decode(std::span<const std::uint8_t> encoded, const std::string& source, ColorSpace color_space) {
-    // OpenImageIO picks its reader by file extension: name one from the bytes' signature.
-    std::string format;
-    if (encoded.size() >= 2 && encoded[0] == 0xFF && encoded[1] == 0xD8) format = "image.jpg";
-    else if (encoded.size() >= 4 && std::memcmp(encoded.data(), "\x89PNG", 4) == 0) format = "image.png";
-    else fail(source, "is neither PNG nor JPEG");
-    const auto start = std::chrono::steady_clock::now();
-    OIIO::Filesystem::IOMemReader memory(const_cast<std::uint8_t*>(encoded.data()), encoded.size());
-    // Alpha as OpenImageIO gives it by default (PNG colour premultiplied by
-    // alpha), as glTF images were read before 8-bit storage; glTF means
-    // straight alpha ("oiio:UnassociatedAlpha" as load() sets), which is the
-    // alpha modes' business.
-    OIIO::ImageSpec config;
-    // Opened by create() itself (do_open): create() with a proxy opens the
-    // image anyway, and a second open() started the JPEG decoder twice.
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format, true, &config, &memory);
-    if (!input)
-        fail(source, "cannot decode image: " + one_line(OIIO::geterror()));
-    build_times().decode_ns += nanoseconds_since(start);
-    return ImageDecoder::decode(*input, source, color_space);
+    if (!has_jpeg_signature(encoded) && !(encoded.size() >= 4 && std::memcmp(encoded.data(), "\x89PNG", 4) == 0))
+        fail(source, "is neither PNG nor JPEG");
+    // PNG alpha associated as OpenImageIO did by default (colour premultiplied
+    // by alpha in the encoded values), as glTF images were read before 8-bit
+    // storage; glTF means straight alpha, which is the alpha modes' business.
+    return ImageDecoder::decode_bytes(encoded, source, color_space, PngAlpha::associated, "cannot decode image");
 }
 
 // Level n+1 from level n: decode the parent's texels to linear light, box
@@ -368,7 +456,10 @@ void Texture::build_mip_chain() {
     const auto start = std::chrono::steady_clock::now();
     const float* const rgb_decode = (color_space_ == ColorSpace::srgb ? srgb_decode_table() : unorm8_table()).data();
     const float* const alpha_decode = unorm8_table().data();
-    const auto rgb_encode = color_space_ == ColorSpace::srgb ? encode_srgb8 : encode_unorm8;
+    // One copy of the filter per colour space, so that the encoder is inlined
+    // (it was an indirect call per channel and texel).
+    const SrgbEncoder& srgb = srgb_encoder();
+    const auto build_levels = [&](auto rgb_encode) {
     for (std::size_t l = 1; l < levels_.size(); ++l) {
         const MipLevel parent = levels_[l - 1];
         const MipLevel child = levels_[l];
@@ -378,7 +469,7 @@ void Texture::build_mip_chain() {
         std::uint32_t* const child_texels = texels_.get() + child.offset;
         const auto encode = [&](float r, float g, float b, float a) {
             return std::uint32_t(rgb_encode(r)) | std::uint32_t(rgb_encode(g)) << 8 |
-                   std::uint32_t(rgb_encode(b)) << 16 | std::uint32_t(encode_unorm8(a)) << 24;
+                   std::uint32_t(rgb_encode(b)) << 16 | std::uint32_t(unorm8_from_linear(a)) << 24;
         };
         // Both sides even: every texel is the plain 2×2 average. The same floats
         // as the general taps give (weights ¼ = ½·½, summed in the same order;
@@ -438,6 +529,9 @@ void Texture::build_mip_chain() {
             build_rows(0, child.height);
         }
     }
+    };
+    if (color_space_ == ColorSpace::srgb) build_levels([&srgb](float x) { return srgb.encode(x); });
+    else build_levels([](float x) { return unorm8_from_linear(x); });
     build_times().mips_ns += nanoseconds_since(start);
     build_times().textures += 1;
     build_times().bytes += static_cast<std::int64_t>(memory_bytes());

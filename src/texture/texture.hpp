@@ -113,9 +113,11 @@ struct TextureView {
 // 3 = RGB → (r, g, b, 1); 4 = RGBA; more than 4: the first 4, the rest ignored.
 class Texture {
 public:
-    // Reads any format OpenImageIO reads (PNG, JPEG, TGA, EXR, ...), the first
-    // subimage. Throws TextureError for a missing or unreadable file, a truncated
-    // image, a zero size, or a side above kMaxTextureSize.
+    // Reads PNG and JPEG itself (libpng, libjpeg-turbo), any other format
+    // OpenImageIO reads (TGA, TIFF, EXR, HDR, ...) through its module
+    // (oiio_module_loader.hpp), the first subimage. Throws TextureError for a
+    // missing or unreadable file, a truncated image, a zero size, a side above
+    // kMaxTextureSize, or another format when the module is not installed.
     static Texture load(const std::filesystem::path& path, ColorSpace color_space);
     // The same from an encoded PNG or JPEG image in memory (a glTF image);
     // messages read "<source>: what is wrong".

@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_renderer.hpp"
 #include "raster/msaa.hpp"
@@ -141,10 +144,7 @@ gl_reference::GlReferenceRenderer& gl_renderer() {
     return *renderer;
 }
 
-void check_scene_agrees(const char* scene_file) {
-    const Scene scene = load_scene_file(test::scene_path(scene_file));
-    const std::string name = std::filesystem::path(scene_file).stem().string();
-
+void check_scene_agrees(const Scene& scene, const std::string& name) {
     gl_reference::GlReferenceRenderer* gl = &gl_renderer();
     const RenderedImage gl_image = gl->render(scene);
     const std::vector<std::uint32_t> gl_ids = gl->render_object_ids(scene);
@@ -170,6 +170,25 @@ void check_scene_agrees(const char* scene_file) {
     CHECK(a.max_interior_difference <= kMaxInteriorDifference);
 }
 
+void check_scene_agrees(const char* scene_file) {
+    check_scene_agrees(load_scene_file(test::scene_path(scene_file)), std::filesystem::path(scene_file).stem().string());
+}
+
+// Every material single-sided: Tessera culls back faces in triangle setup, llvmpipe with GL_CULL_FACE.
+Scene single_sided(Scene scene) {
+    for (Material& material : scene.materials) material.double_sided = false;
+    return scene;
+}
+
+// Pixels whose red channel is not the clear colour's.
+int covered_pixels(const RenderedImage& image, const Scene& scene) {
+    const int clear_red = int(std::lround(scene.clear_color.r * 255.0f));
+    int count = 0;
+    for (std::size_t p = 0; p < image.display.size() / 3; ++p)
+        if (std::abs(int(image.display[p * 3]) - clear_red) > kChannelTolerance) ++count;
+    return count;
+}
+
 }  // namespace
 
 TEST_CASE("crosscheck: the OpenGL reference context is llvmpipe with a core profile of 3.3 or newer") {
@@ -186,6 +205,46 @@ TEST_CASE("crosscheck: the OpenGL reference context is llvmpipe with a core prof
 TEST_CASE("crosscheck: spheres.toml agrees with OpenGL on llvmpipe") { check_scene_agrees("spheres.toml"); }
 
 TEST_CASE("crosscheck: shapes.toml agrees with OpenGL on llvmpipe") { check_scene_agrees("shapes.toml"); }
+
+TEST_CASE("crosscheck: with back faces culled, spheres and shapes agree with llvmpipe's GL_CULL_FACE") {
+    check_scene_agrees(single_sided(load_scene_file(test::scene_path("spheres.toml"))), "spheres_culled");
+    check_scene_agrees(single_sided(load_scene_file(test::scene_path("shapes.toml"))), "shapes_culled");
+}
+
+TEST_CASE("crosscheck: both cull the same faces of a single-sided plane, mirrored or not, seen from either side") {
+    Scene scene;
+    scene.width = 64;
+    scene.height = 48;
+    scene.meshes.push_back(make_plane_mesh());  // normal +Y: its front is seen from above
+    Material material;
+    material.albedo = {0.8f, 0.8f, 0.8f};
+    material.double_sided = false;
+    scene.materials.push_back(material);
+    scene.lights.push_back(Light{.position = {0, 5, 0}, .color = {50, 50, 50}});
+    scene.lights.push_back(Light{.position = {0, -5, 0}, .color = {50, 50, 50}});
+    gl_reference::GlReferenceRenderer& gl = gl_renderer();
+    Renderer renderer;
+    for (const bool mirrored : {false, true}) {
+        for (const float camera_y : {3.0f, -3.0f}) {
+            // A mirrored model matrix (negative determinant) makes clockwise the front: still seen from above.
+            scene.objects = {Object{.mesh = 0, .material = 0,
+                                    .model = glm::scale(glm::mat4(1.0f), {mirrored ? -1.0f : 1.0f, 1.0f, 1.0f})}};
+            scene.camera.position = {0.0f, camera_y, 2.5f};
+            scene.camera.target = {0.0f, 0.0f, 0.0f};
+            const int gl_covered = covered_pixels(gl.render(scene), scene);
+            const int tessera_covered = covered_pixels(renderer.render(scene), scene);
+            CAPTURE(mirrored);
+            CAPTURE(camera_y);
+            if (camera_y > 0) {
+                CHECK(gl_covered > 500);  // the front face is drawn
+                CHECK(std::abs(tessera_covered - gl_covered) <= gl_covered / 50);
+            } else {
+                CHECK(gl_covered == 0);  // only the back face faces the camera: culled
+                CHECK(tessera_covered == 0);
+            }
+        }
+    }
+}
 
 TEST_CASE("crosscheck: a scene without lights renders ambient only in both") {
     Scene scene = load_scene_file(test::scene_path("shapes.toml"));

@@ -12,6 +12,7 @@
 
 #include "scene/gltf_import.hpp"
 #include "scene/scene_validation.hpp"
+#include "tessera/animation.hpp"
 #include "tessera/renderer.hpp"
 
 namespace tessera::fuzz {
@@ -106,6 +107,19 @@ void gltf_loader(const std::uint8_t* data, std::size_t size) {
         return;
     }
     check_accepted_scene(scene, "make_gltf_scene returned a scene that validate_scene refuses");
+    // Skins, morph targets and animations posed at a few times and frames: never a
+    // crash; a pose that leaves the valid range is refused by validate_scene.
+    try {
+        for (const double seconds : {0.0, 0.37, 1e4}) {
+            set_scene_time(scene, seconds);
+            validate_scene(scene);
+        }
+        if (play_gltf_animation(scene)) {
+            set_scene_frame(scene, scene.animation->frame_count - 1);
+            set_scene_frame(scene, scene.animation->frame_count / 2);
+        }
+    } catch (const SceneError&) {
+    }
 }
 
 void rasterizer(const std::uint8_t* data, std::size_t size) {

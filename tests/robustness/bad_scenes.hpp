@@ -4,10 +4,13 @@
 // stands for the file name, so rows can pin the line and column ("@:3:9:").
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "scene/gltf_animation_files.hpp"
+#include "scene/gltf_compressed_files.hpp"
 #include "scene/gltf_test_files.hpp"
 
 namespace tessera::test {
@@ -239,9 +242,9 @@ inline std::vector<BadGltf> bad_gltf_files() {
          {"@: KHR_lights_punctual lights[1] has type 'area', expected point, spot or directional"}},
         {"gltf_required_extension", ".gltf",
          replaced(good, R"("extensionsUsed": ["KHR_lights_punctual"])",
-                  R"("extensionsUsed": ["KHR_lights_punctual", "KHR_draco_mesh_compression"], )"
-                  R"("extensionsRequired": ["KHR_draco_mesh_compression"])"),
-         {"@: the file requires the extension 'KHR_draco_mesh_compression', which is not supported"}},
+                  R"("extensionsUsed": ["KHR_lights_punctual", "KHR_texture_basisu"], )"
+                  R"("extensionsRequired": ["KHR_texture_basisu"])"),
+         {"@: the file requires the extension 'KHR_texture_basisu', which is not supported"}},
         {"gltf_alpha_cutoff_negative", ".gltf",
          replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "MASK", "alphaCutoff": -1,)"),
          {"@: materials[0] 'painted' alphaCutoff is -1.000000, expected a finite number >= 0"}},
@@ -266,7 +269,128 @@ inline std::vector<BadGltf> bad_gltf_files() {
          {"@: meshes[0] 'parts' primitives[0] COLOR_0 has 6 elements for 3 positions"}},
         {"gltf_alpha_mode_unknown", ".gltf", replaced(good, R"("alphaMode": "BLEND",)", R"("alphaMode": "CLIP",)"),
          {"@: materials[0] 'painted' alphaMode is 'CLIP', expected OPAQUE, MASK or BLEND"}},
+        // Quantized, sparse and compressed geometry (gltf_compressed_files.hpp).
+        {"gltf_quantized_normal_unsigned", ".gltf",
+         replaced(replaced(good, R"("extensionsUsed": ["KHR_lights_punctual"])",
+                           R"("extensionsUsed": ["KHR_lights_punctual", "KHR_mesh_quantization"])"),
+                  R"({"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"})",
+                  R"({"bufferView": 1, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC3"})"),
+         {"@: meshes[0] 'parts' primitives[0] NORMAL (accessor 1) has components of UNSIGNED_BYTE, expected FLOAT, BYTE, SHORT"}},
+        {"gltf_sparse_index_out_of_range", ".gltf",
+         // The strip's u8 indices 0 1 read as one u16: 256.
+         replaced(good, R"("min": [0, 0, 0], "max": [1, 1, 0])",
+                  R"("min": [0, 0, 0], "max": [1, 1, 0], "sparse": {"count": 1, )"
+                  R"("indices": {"bufferView": 5, "componentType": 5123}, "values": {"bufferView": 4}})"),
+         {"@: meshes[0] 'parts' primitives[0] POSITION (accessor 0) sparse index 256 at [0] is out of range; the accessor has 3 elements"}},
+        {"gltf_sparse_values_past_view", ".gltf",
+         replaced(good, R"("min": [0, 0, 0], "max": [1, 1, 0])",
+                  R"("min": [0, 0, 0], "max": [1, 1, 0], "sparse": {"count": 2, )"
+                  R"("indices": {"bufferView": 5, "componentType": 5121}, "values": {"bufferView": 4, "byteOffset": 64}})"),
+         {"@: meshes[0] 'parts' primitives[0] POSITION (accessor 0) sparse values is out of range: 2 values of 12 bytes"}},
+        {"gltf_implicit_zeros_huge", ".gltf",
+         replaced(good, R"({"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"})",
+                  R"({"componentType": 5126, "count": 3000000000, "type": "VEC2"})"),
+         {"@: meshes[0] 'parts' primitives[0] TEXCOORD_0 (accessor 2) has no bufferView and 3000000000 elements"}},
+        {"gltf_draco_does_not_decode", ".glb",
+         [] {
+             const GridMesh grid = grid_mesh(2);
+             DracoGrid draco = draco_grid(grid);
+             for (std::size_t i = 0; i < draco.bytes.size(); ++i) draco.bytes[i] = std::uint8_t(0xA5 ^ i);
+             const GltfParts parts = draco_grid_parts(draco, grid.positions.size(), grid.indices.size());
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression: the Draco data in bufferView 0 (",
+          " bytes) does not decode: "}},
+        {"gltf_draco_unknown_attribute_id", ".glb",
+         [] {
+             const GridMesh grid = grid_mesh(2);
+             DracoGrid draco = draco_grid(grid);
+             draco.normal_id = 9;
+             const GltfParts parts = draco_grid_parts(draco, grid.positions.size(), grid.indices.size());
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression attribute NORMAL: the Draco mesh has no attribute with id 9"}},
+        {"gltf_meshopt_stream_too_short", ".glb",
+         [] {
+             // The positions' stream (81 elements of 12 bytes) cut to 10 bytes; its real length becomes an unknown key.
+             GltfParts parts = meshopt_grid_parts(grid_mesh(8));
+             parts.json = replaced(parts.json, R"({"buffer": 0, "byteOffset": 0, "byteLength": )",
+                                   R"({"buffer": 0, "byteOffset": 0, "byteLength": 10, "was": )");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 0 EXT_meshopt_compression is too short: 10 bytes cannot hold 81 elements of 12 bytes"}},
+        {"gltf_meshopt_stream_does_not_decode", ".glb",
+         [] {
+             GltfParts parts = meshopt_grid_parts(grid_mesh(8));
+             parts.json = replaced(parts.json, R"({"buffer": 0, "byteOffset": 0, "byteLength": )",
+                                   R"({"buffer": 0, "byteOffset": 0, "byteLength": 40, "was": )");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 0 EXT_meshopt_compression: the ATTRIBUTES data (40 bytes) does not decode to 81 elements of 12 bytes"}},
+        {"gltf_meshopt_unknown_mode", ".glb",
+         [] {
+             GltfParts parts = meshopt_grid_parts(grid_mesh(2));
+             parts.json = replaced(parts.json, R"("mode": "TRIANGLES")", R"("mode": "STRIPS")");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 4 EXT_meshopt_compression mode is 'STRIPS', expected ATTRIBUTES, TRIANGLES or INDICES"}},
+        {"gltf_meshopt_fallback_read_plainly", ".glb",
+         [] {
+             // One more buffer view, over the fallback buffer and not compressed.
+             GltfParts parts = meshopt_grid_parts(grid_mesh(2));
+             parts.json = replaced(parts.json, "],\n  \"buffers\": [", ", {\"buffer\": 1, \"byteLength\": 8}],\n  \"buffers\": [");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 5 reads buffer 1, a EXT_meshopt_compression fallback buffer without data, but is not compressed"}},
     };
+}
+
+// Bad skins, morph targets and animations (gltf_animation_files.hpp, broken).
+inline std::vector<BadGltf> bad_gltf_animation_files() {
+    const std::string strip = skinned_strip_gltf(), morph = morph_triangle_gltf(), node = animated_node_gltf();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    return {
+        {"gltf_skin_joint_out_of_range", ".gltf", replaced(strip, "\"joints\": [1, 2]", "\"joints\": [1, 9]"),
+         {"@: skins[0] 'bones' joint [1] is node 9 but the file has 3 nodes"}},
+        {"gltf_skin_vertex_joint_out_of_range", ".gltf", replaced(strip, "\"joints\": [1, 2]", "\"joints\": [1]"),
+         {"@: meshes[0] 'strip' primitives[0] JOINTS_0 of vertex 2 names joint 1 but its skin has 1 joints"}},
+        {"gltf_skin_weights_without_joints", ".gltf", replaced(strip, "\"JOINTS_0\"", "\"JOINTS_5\""),
+         {"@: meshes[0] 'strip' primitives[0] has WEIGHTS_0 without JOINTS_0"}},
+        {"gltf_skin_joints_normalized", ".gltf",
+         replaced(strip, "\"componentType\": 5121, \"count\": 6", "\"componentType\": 5121, \"normalized\": true, \"count\": 6"),
+         {"@: meshes[0] 'strip' primitives[0] JOINTS_0 (accessor 2) is normalized; joint indices must not be"}},
+        {"gltf_skin_unknown", ".gltf", replaced(strip, "\"skin\": 0", "\"skin\": 4"),
+         {"@: nodes[0] 'strip' uses skin 4 but the file has 1 skins"}},
+        {"gltf_morph_weights_count", ".gltf", replaced(morph, "\"weights\": [0.5, 0]", "\"weights\": [0.5]"),
+         {"@: meshes[0] 'triangle' has 1 weights for 2 morph targets"}},
+        {"gltf_sampler_count_mismatch", ".gltf", replaced(node, "\"interpolation\": \"STEP\"", "\"interpolation\": \"CUBICSPLINE\""),
+         {"@: animations[1] 'step' samplers[0] has 3 key times but 3 output elements; expected 9 (3 per key)"}},
+        {"gltf_sampler_times_not_increasing", ".gltf", animated_node_gltf({0, 1, 1}),
+         {"@: animations[1] 'step' samplers[0] input times are not strictly increasing: [2] = 1 after 1"}},
+        {"gltf_sampler_time_negative", ".gltf", animated_node_gltf({-1, 1, 2}),
+         {"@: animations[1] 'step' samplers[0] input time [0] is -1, expected a finite number >= 0"}},
+        {"gltf_sampler_time_nan", ".gltf", animated_node_gltf({0, nan, 2}),
+         {"@: animations[1] 'step' samplers[0] input time [1] is nan, expected a finite number >= 0"}},
+        {"gltf_sampler_value_nan", ".gltf", animated_node_gltf({0, 1, 2}, {0, 0, 0, nan, 0, 0, 5, 0, 0}),
+         {"@: animations[1] 'step' samplers[0] output value [3] is not finite"}},
+        {"gltf_sampler_interpolation_unknown", ".gltf", replaced(node, "\"interpolation\": \"STEP\"", "\"interpolation\": \"SMOOTH\""),
+         {"@: animations[1] 'step' samplers[0] has interpolation 'SMOOTH', expected LINEAR, STEP or CUBICSPLINE"}},
+        {"gltf_channel_weights_without_morph", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"weights\""),
+         {"@: animations[0] 'linear' channels[1] animates the morph weights of nodes[0] 'mover', which has no mesh with morph targets"}},
+        {"gltf_channel_twice", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"translation\""),
+         {"@: animations[0] 'linear' channels[1] animates nodes[0] 'mover' translation again"}},
+        {"gltf_channel_node_out_of_range", ".gltf", replaced(node, "\"node\": 0, \"path\": \"scale\"", "\"node\": 7, \"path\": \"scale\""),
+         {"@: animations[0] 'linear' channels[1] targets node 7 but the file has 2 nodes"}},
+        {"gltf_channel_path_unknown", ".gltf", replaced(node, "\"path\": \"scale\"", "\"path\": \"color\""),
+         {"@: animations[0] 'linear' channels[1] has target path 'color', expected translation, rotation, scale or weights"}},
+    };
+}
+
+// Every bad glTF row: the importer's and those of skins and animations.
+inline std::vector<BadGltf> all_bad_gltf_files() {
+    std::vector<BadGltf> rows = bad_gltf_files();
+    for (BadGltf& row : bad_gltf_animation_files()) rows.push_back(std::move(row));
+    return rows;
 }
 
 }  // namespace tessera::test

@@ -65,7 +65,7 @@ TEST_CASE("scenes at the edge of validity load") {
 
 TEST_CASE("bad glTF files are refused with the file and what is wrong, never a crash") {
     const std::filesystem::path dir = tessera::test::output_dir("bad_gltf_files");
-    for (const tessera::test::BadGltf& row : tessera::test::bad_gltf_files()) {
+    for (const tessera::test::BadGltf& row : tessera::test::all_bad_gltf_files()) {
         CAPTURE(row.name);
         const std::filesystem::path file = dir / (row.name + row.extension);
         tessera::test::write_bytes(file, row.bytes);

@@ -445,7 +445,6 @@ struct GlReferenceRenderer::State {
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        glDisable(GL_CULL_FACE);
 
         const Uniforms& u = object_ids ? id_uniforms : pbr_uniforms;
         glUseProgram(object_ids ? id_program : pbr_program);
@@ -471,6 +470,7 @@ struct GlReferenceRenderer::State {
             const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.model)));
             glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(object.model));
             glUniformMatrix3fv(u.normal_matrix, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+            set_face_culling(scene.materials[object.material].double_sided, object.model, origin);
             if (object_ids) {
                 glUniform1ui(u.object_id, GLuint(i + 1));
             } else {
@@ -486,6 +486,20 @@ struct GlReferenceRenderer::State {
         }
         glBindVertexArray(0);
         if (multisampled) resolve(scene.width, scene.height);
+    }
+
+    // Material::double_sided = false culls back faces, by Tessera's (and glTF's) rule: front is
+    // counter-clockwise in window space, clockwise under a model matrix with a negative
+    // determinant. Drawing upside down (top_left) mirrors window space, which swaps them again.
+    static void set_face_culling(bool double_sided, const glm::mat4& model, WindowOrigin origin) {
+        if (double_sided) {
+            glDisable(GL_CULL_FACE);
+            return;
+        }
+        const bool clockwise_front = (glm::determinant(glm::mat3(model)) < 0.0f) != (origin == WindowOrigin::top_left);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glFrontFace(clockwise_front ? GL_CW : GL_CCW);
     }
 
     // The multisample resolve: GL averages each pixel's samples into the single-sample FBO.

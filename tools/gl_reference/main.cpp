@@ -23,6 +23,7 @@ struct Options {
     int width = 0;       // 0: the scene's own
     int height = 0;
     int msaa = 0;        // 0: the scene's own
+    bool cull_back_faces = false;  // every material single-sided (GL_CULL_FACE), as tessera bench's flag
     int frames = 30;
     int warmup = 3;
     bool json = false;
@@ -56,6 +57,8 @@ int run(const Options& opt) {
     if (opt.width > 0) scene.width = opt.width;
     if (opt.height > 0) scene.height = opt.height;
     if (opt.msaa > 0) scene.msaa = opt.msaa;
+    if (opt.cull_back_faces)
+        for (tessera::Material& material : scene.materials) material.double_sided = false;
 
     tessera::gl_reference::GlReferenceRenderer renderer;
     if (!opt.output.empty()) tessera::write_image(renderer.render(scene), opt.output);
@@ -96,6 +99,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, tessera::kMaxImageDimension));
     app.add_option("--msaa", opt.msaa, "Samples per pixel, 1 or 4 (overrides the scene's output.msaa)")
         ->check(CLI::IsMember({1, 4}));
+    app.add_flag("--cull-back-faces", opt.cull_back_faces,
+                 "Draw every material single-sided: back faces culled (GL_CULL_FACE), as Material::double_sided = false");
     app.add_option("--frames", opt.frames, "Frames to time (0: only render the image)")->check(CLI::Range(0, 100000));
     app.add_option("--warmup", opt.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
     app.add_flag("--json", opt.json, "Print one JSON object");

@@ -1,0 +1,41 @@
+#include "cli/tools_exec.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace tessera::cli {
+
+const std::vector<ToolCommand>& tool_commands() {
+    static const std::vector<ToolCommand> commands = {
+        {"bench", "Render a scene many times and report time per stage"},
+        {"contact-sheet", "Tile rendered frames (or any images) into one PNG"},
+        {"check", "Render scene suites and compare them with golden images (regression testing)"},
+    };
+    return commands;
+}
+
+bool is_tool_command(std::string_view argument) {
+    for (const ToolCommand& command : tool_commands())
+        if (argument == command.name) return true;
+    return false;
+}
+
+int exec_tools(int argc, char** argv) {
+    (void)argc;
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    const std::filesystem::path tools = (error ? std::filesystem::path(argv[0]).parent_path() : self.parent_path()) /
+                                        "tessera-tools";
+    ::execv(tools.c_str(), argv);  // argv[0] stays: messages and usage still say "tessera"
+    std::fprintf(stderr, "tessera: error: '%s' is part of tessera-tools, which cannot run from '%s': %s\n",
+                 argc > 1 ? argv[1] : "", tools.c_str(), std::strerror(errno));
+    return 1;
+}
+
+}  // namespace tessera::cli

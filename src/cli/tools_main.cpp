@@ -1,0 +1,60 @@
+// tessera-tools: the image-analysis sub-commands of tessera (tools_exec.hpp):
+// check, contact-sheet and bench. `tessera check ...` runs `tessera-tools
+// check ...`, so usage and messages read as tessera's.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/bench_command.hpp"
+#include "cli/check_command.hpp"
+#include "cli/contact_sheet_command.hpp"
+#include "cli/frame_options.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"Tessera: a multithreaded SIMD CPU rasterizer with a PBR fragment stage", "tessera"};
+    app.set_version_flag("--version", "tessera " TESSERA_VERSION);
+    app.require_subcommand(1);
+
+    tessera::cli::BenchCommand bench;
+    CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");
+    bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
+    bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
+    bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
+    tessera::cli::add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
+    bench_app->add_flag("--json", bench.json, "Print one JSON object");
+    bench_app->add_flag("--cull-back-faces", bench.cull_back_faces,
+                        "Draw every material single-sided (back faces culled), as double_sided = false");
+    bench_app->add_flag("--radiance", bench.keep_radiance, "Also keep the HDR radiance image, as a render to EXR does");
+    bench_app->add_option("--trace", bench.trace_path,
+                          "Write the timed frames as a Chrome trace-event JSON file (Perfetto, chrome://tracing): "
+                          "a track per worker, a span per pass, chunk and tile");
+    bench_app->add_option("--heatmap", bench.heatmap_path,
+                          "Write a PNG of the frame with each tile tinted by its cost");
+    bench_app->add_option("--heatmap-metric", bench.heatmap_metric,
+                          "What the heat map shows: time (ms per tile, median of the timed frames) or work "
+                          "(fragments x lights per tile)")
+        ->check(CLI::IsMember({"time", "work"}));
+
+    tessera::cli::CheckCommand check;
+    CLI::App* check_app = tessera::cli::add_check_command(app, check);
+
+    tessera::cli::ContactSheetCommand contact_sheet;
+    CLI::App* contact_sheet_app = tessera::cli::add_contact_sheet_command(app, contact_sheet);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int status = app.exit(e);
+        return status != 0 && *check_app ? tessera::cli::kCheckUsageError : status;
+    }
+    try {
+        if (*bench_app) return tessera::cli::run_bench(bench);
+        if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
+        if (*check_app) return tessera::cli::run_check(check);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return 1;
+    }
+    return 1;
+}

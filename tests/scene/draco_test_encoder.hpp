@@ -1,0 +1,25 @@
+// Draco encoding for the tests' small models, in a shared library of its own
+// for the reason src/scene/draco_codec.hpp gives (libdraco carries a tinygltf).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#define TESSERA_DRACO_TEST_API __attribute__((visibility("default")))
+
+namespace tessera::test {
+
+// A triangle list encoded with positions 14 bits, normals 10, uvs 12 and
+// tangents (a generic 4-component attribute) not quantized; with the unique ids
+// of those four attributes. Empty bytes if Draco refused.
+struct DracoEncoded {
+    std::vector<std::uint8_t> bytes;
+    int position_id = 0, normal_id = 0, uv_id = 0, tangent_id = 0;
+};
+
+TESSERA_DRACO_TEST_API DracoEncoded encode_draco_triangles(const float* positions, const float* normals, const float* uvs,
+                                                          const float* tangents, const std::uint32_t* indices,
+                                                          std::size_t index_count);
+
+}  // namespace tessera::test
