@@ -1,5 +1,7 @@
 #include "image/blend.hpp"
 
+#include "image/display_encoding.hpp"
+
 namespace tessera::image {
 
 void TileRadiance::reserve(int tile_side, int samples_per_pixel) {
@@ -83,21 +85,16 @@ void resolve_blended_tile(TileRadiance& tile, const raster::TileRect& rect, simd
             }
         }
     }
-    shade::tonemap_gamma(isa, std::size_t(tile.side) * tile.side * n, tile.r.data(), tile.g.data(), tile.b.data());
+    // The display values as resolve_tile encodes them (exact, any ISA): r becomes packed RGB8.
+    encode_display_unorm8(isa, std::size_t(tile.side) * tile.side * n, tile.r.data(), tile.g.data(), tile.b.data());
     for (int y = 0; y < rect.height(); ++y) {
         for (int x = 0; x < rect.width(); ++x) {
-            const std::size_t first = std::size_t(n) * (std::size_t(y) * tile.side + x);
+            const float* encoded = tile.r.data() + std::size_t(n) * (std::size_t(y) * tile.side + x);
             std::uint8_t* display = &image.display[3 * (std::size_t(rect.y0 + y) * image.width + rect.x0 + x)];
-            const std::vector<float>* planes[3] = {&tile.r, &tile.g, &tile.b};
             for (int c = 0; c < 3; ++c) {
-                const float* v = planes[c]->data() + first;
-                if (n == 1) {
-                    display[c] = quantize_unorm8(v[0]);
-                } else {
-                    unsigned sum = 0;
-                    for (int s = 0; s < n; ++s) sum += quantize_unorm8(v[s]);
-                    display[c] = std::uint8_t((sum + unsigned(n) / 2) / unsigned(n));
-                }
+                unsigned sum = 0;
+                for (int s = 0; s < n; ++s) sum += (packed_unorm8(encoded[s]) >> (8 * c)) & 0xFFu;
+                display[c] = std::uint8_t((sum + unsigned(n) / 2) / unsigned(n));  // n = 1: the value itself
             }
         }
     }

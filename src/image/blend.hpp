@@ -49,7 +49,7 @@ void blend_over(const raster::BlendFragments& fragments, std::size_t count, cons
 
 // Writes the tile into the image as resolve_tile / resolve_tile_msaa do:
 // radiance (the mean of the samples'), display (Reinhard + gamma per sample,
-// the mean of the 8-bit values). Tonemaps `tile` in place.
+// exactly as encode_display_unorm8; the mean of the 8-bit values). Overwrites `tile`.
 void resolve_blended_tile(TileRadiance& tile, const raster::TileRect& rect, simd::Isa isa, RenderedImage& image);
 
 }  // namespace tessera::image

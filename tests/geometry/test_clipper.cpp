@@ -100,3 +100,25 @@ TEST_CASE("clipping against the far plane and the guard band together keeps ever
         CHECK(p.x <= kGuard.x_ndc * p.w * (1 + 1e-6f));
     }
 }
+
+TEST_CASE("clipped corners carry their weights of the input corners, for attributes kept outside the vertex") {
+    // Both near and guard-band clipping, so corners are made from corners already made.
+    const ShadedVertex a = vertex_at({0, 0, -3, 1}, {0, 0, 0});
+    const ShadedVertex b = vertex_at({1e6f, 0, 0, 2}, {4, 0, 1});
+    const ShadedVertex c = vertex_at({0, 1, 0, 2}, {0, 2, 3});
+    const std::uint32_t planes =
+        (outcode(a.clip_pos, kGuard) | outcode(b.clip_pos, kGuard) | outcode(c.clip_pos, kGuard)) & kClipPlaneBits;
+    REQUIRE((planes & kOutsideNear) != 0);
+    REQUIRE((planes & kOutsideGuardRight) != 0);
+    ClippedPolygon polygon;
+    clip_triangle(a, b, c, planes, kGuard, polygon);
+    REQUIRE(polygon.count >= 4);
+    for (int i = 0; i < polygon.count; ++i) {
+        CAPTURE(i);
+        const glm::vec3& w = polygon.weights[i];
+        CHECK(w.x + w.y + w.z == doctest::Approx(1.0f).epsilon(1e-6));
+        const glm::vec3 world = w.x * a.world_pos + w.y * b.world_pos + w.z * c.world_pos;
+        for (int k = 0; k < 3; ++k) CHECK(world[k] == doctest::Approx(polygon.corners[i].world_pos[k]).epsilon(1e-5));
+        if (polygon.source[i] >= 0) CHECK(w[polygon.source[i]] == 1.0f);
+    }
+}
