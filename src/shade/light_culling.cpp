@@ -22,6 +22,10 @@ float axis_gap(float position, float min, float max) {
     return std::max(std::max(min - position, position - max), 0.0f);
 }
 
+// The farthest any point of [min, max] can be from `position` along one axis:
+// for any p in [min, max], |fl(position - p)| <= this, rounding being monotonic.
+float axis_reach(float position, float min, float max) { return std::max(position - min, max - position); }
+
 }  // namespace
 
 void select_reaching(const ShadingLights& lights, const LightSelection& from, const WorldBounds& bounds,
@@ -30,14 +34,20 @@ void select_reaching(const ShadingLights& lights, const LightSelection& from, co
     for (std::size_t k = 0; k < from.count(); ++k) {
         if (k == from.spot_begin) out.spot_begin = out.count();
         if (k == from.directional_begin) out.directional_begin = out.count();
-        const std::uint32_t j = from.index[k];
+        const std::uint32_t j = from.index[k] & kLightIndexMask;
+        std::uint32_t reaches_all = kReachesAll;
         if (lights.range[j] > 0.0f) {
-            const float gx = axis_gap(lights.pos_x[j], bounds.min.x, bounds.max.x);
-            const float gy = axis_gap(lights.pos_y[j], bounds.min.y, bounds.max.y);
-            const float gz = axis_gap(lights.pos_z[j], bounds.min.z, bounds.max.z);
+            const float x = lights.pos_x[j], y = lights.pos_y[j], z = lights.pos_z[j];
+            const float gx = axis_gap(x, bounds.min.x, bounds.max.x);
+            const float gy = axis_gap(y, bounds.min.y, bounds.max.y);
+            const float gz = axis_gap(z, bounds.min.z, bounds.max.z);
             if ((gx * gx + gy * gy) + gz * gz > lights.range_sq[j]) continue;  // distance_squared's order
+            const float fx = axis_reach(x, bounds.min.x, bounds.max.x);
+            const float fy = axis_reach(y, bounds.min.y, bounds.max.y);
+            const float fz = axis_reach(z, bounds.min.z, bounds.max.z);
+            if ((fx * fx + fy * fy) + fz * fz > lights.range_sq[j]) reaches_all = 0;
         }
-        out.index.push_back(j);
+        out.index.push_back(j | reaches_all);
     }
     // Groups that begin at the very end were never reached in the loop.
     if (from.spot_begin == from.count()) out.spot_begin = out.count();

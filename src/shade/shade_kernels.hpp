@@ -72,13 +72,18 @@ struct ShadingLights {
 };
 
 // Some of a ShadingLights' lights: indices into it, in its type-group order,
-// and where the spots and directionals begin among them (light culling).
+// and where the spots and directionals begin among them (light culling). An
+// entry is a light's index, with kReachesAll set where the light is known to
+// reach every fragment shaded with the selection (it has no range, or they all
+// lie within it): the kernels then skip the per-lane range test.
+inline constexpr std::uint32_t kReachesAll = 1u << 31;
+inline constexpr std::uint32_t kLightIndexMask = kReachesAll - 1;
 struct LightSelection {
     std::vector<std::uint32_t> index;
     std::size_t spot_begin = 0, directional_begin = 0;
 
     std::size_t count() const { return index.size(); }
-    // Every light of `lights`.
+    // Every light of `lights` (kReachesAll where it has no range).
     void assign_all(const ShadingLights& lights);
 };
 
