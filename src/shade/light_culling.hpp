@@ -52,7 +52,7 @@ static_assert(kClusterFragments % kLanePadding == 0);
 
 // A worker's selections, reserved once (reserve) so that culling allocates nothing per tile.
 struct LightCullScratch {
-    LightSelection all, tile, cluster;
+    LightSelection tile, cluster;
     void reserve(std::size_t light_count);
 };
 
