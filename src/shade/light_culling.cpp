@@ -19,12 +19,17 @@ namespace {
 // The gap from `position` to [min, max] along one axis, >= 0. For any p in
 // [min, max], rounding being monotonic: gap <= |fl(position - p)|.
 float axis_gap(float position, float min, float max) {
-    return std::max(std::max(min - position, position - max), 0.0f);
+    const float below = min - position, above = position - max;  // at most one is > 0
+    const float gap = below > above ? below : above;
+    return gap > 0.0f ? gap : 0.0f;
 }
 
 // The farthest any point of [min, max] can be from `position` along one axis:
 // for any p in [min, max], |fl(position - p)| <= this, rounding being monotonic.
-float axis_reach(float position, float min, float max) { return std::max(position - min, max - position); }
+float axis_reach(float position, float min, float max) {
+    const float from_min = position - min, from_max = max - position;
+    return from_min > from_max ? from_min : from_max;
+}
 
 }  // namespace
 
@@ -45,7 +50,8 @@ void select_reaching(const ShadingLights&, const LightSelection& from, const Wor
         const float fy = axis_reach(y[k], bounds.min.y, bounds.max.y);
         const float fz = axis_reach(z[k], bounds.min.z, bounds.max.z);
         const float far_sq = (fx * fx + fy * fy) + fz * fz;
-        verdict[k] = gap_sq <= reach_sq[k] ? (far_sq <= reach_sq[k] ? 1u | kReachesAll : 1u) : 0u;
+        // far_sq >= gap_sq: kReachesAll comes only with 1.
+        verdict[k] = std::uint32_t(gap_sq <= reach_sq[k]) | (far_sq <= reach_sq[k] ? kReachesAll : 0u);
     }
     out.index.clear();
     for (auto* column : {&out.x, &out.y, &out.z, &out.reach_sq}) column->clear();
