@@ -19,43 +19,66 @@ namespace {
 // The gap from `position` to [min, max] along one axis, >= 0. For any p in
 // [min, max], rounding being monotonic: gap <= |fl(position - p)|.
 float axis_gap(float position, float min, float max) {
-    return std::max(std::max(min - position, position - max), 0.0f);
+    const float below = min - position, above = position - max;  // at most one is > 0
+    const float gap = below > above ? below : above;
+    return gap > 0.0f ? gap : 0.0f;
+}
+
+// The farthest any point of [min, max] can be from `position` along one axis:
+// for any p in [min, max], |fl(position - p)| <= this, rounding being monotonic.
+float axis_reach(float position, float min, float max) {
+    const float from_min = position - min, from_max = max - position;
+    return from_min > from_max ? from_min : from_max;
 }
 
 }  // namespace
 
-void select_reaching(const ShadingLights& lights, const LightSelection& from, const WorldBounds& bounds,
+void select_reaching(const ShadingLights&, const LightSelection& from, const WorldBounds& bounds,
                      LightSelection& out) {
+    // First every light's verdict, without branches or compaction, so that the
+    // compiler vectorizes it: 0 misses the box, 1 reaches part of it, 1 | kReachesAll all of it.
+    const std::size_t n = from.count();
+    out.verdict.resize(n);
+    const float *x = from.x.data(), *y = from.y.data(), *z = from.z.data(), *reach_sq = from.reach_sq.data();
+    std::uint32_t* verdict = out.verdict.data();
+    for (std::size_t k = 0; k < n; ++k) {
+        const float gx = axis_gap(x[k], bounds.min.x, bounds.max.x);
+        const float gy = axis_gap(y[k], bounds.min.y, bounds.max.y);
+        const float gz = axis_gap(z[k], bounds.min.z, bounds.max.z);
+        const float gap_sq = (gx * gx + gy * gy) + gz * gz;  // distance_squared's order
+        const float fx = axis_reach(x[k], bounds.min.x, bounds.max.x);
+        const float fy = axis_reach(y[k], bounds.min.y, bounds.max.y);
+        const float fz = axis_reach(z[k], bounds.min.z, bounds.max.z);
+        const float far_sq = (fx * fx + fy * fy) + fz * fz;
+        // far_sq >= gap_sq: kReachesAll comes only with 1.
+        verdict[k] = std::uint32_t(gap_sq <= reach_sq[k]) | (far_sq <= reach_sq[k] ? kReachesAll : 0u);
+    }
     out.index.clear();
-    for (std::size_t k = 0; k < from.count(); ++k) {
+    for (auto* column : {&out.x, &out.y, &out.z, &out.reach_sq}) column->clear();
+    for (std::size_t k = 0; k < n; ++k) {
         if (k == from.spot_begin) out.spot_begin = out.count();
         if (k == from.directional_begin) out.directional_begin = out.count();
-        const std::uint32_t j = from.index[k];
-        if (lights.range[j] > 0.0f) {
-            const float gx = axis_gap(lights.pos_x[j], bounds.min.x, bounds.max.x);
-            const float gy = axis_gap(lights.pos_y[j], bounds.min.y, bounds.max.y);
-            const float gz = axis_gap(lights.pos_z[j], bounds.min.z, bounds.max.z);
-            if ((gx * gx + gy * gy) + gz * gz > lights.range_sq[j]) continue;  // distance_squared's order
-        }
-        out.index.push_back(j);
+        if (verdict[k] == 0) continue;
+        out.index.push_back((from.index[k] & kLightIndexMask) | (verdict[k] & kReachesAll));
+        out.x.push_back(x[k]), out.y.push_back(y[k]), out.z.push_back(z[k]), out.reach_sq.push_back(reach_sq[k]);
     }
     // Groups that begin at the very end were never reached in the loop.
-    if (from.spot_begin == from.count()) out.spot_begin = out.count();
-    if (from.directional_begin == from.count()) out.directional_begin = out.count();
+    if (from.spot_begin == n) out.spot_begin = out.count();
+    if (from.directional_begin == n) out.directional_begin = out.count();
 }
 
 void LightCullScratch::reserve(std::size_t light_count) {
-    for (LightSelection* s : {&all, &tile, &cluster}) s->index.reserve(light_count);
+    for (LightSelection* s : {&tile, &cluster}) {
+        s->index.reserve(light_count), s->verdict.reserve(light_count);
+        for (auto* column : {&s->x, &s->y, &s->z, &s->reach_sq}) column->reserve(light_count);
+    }
 }
 
 CulledWork shade_fragments_culled(Isa isa, const FragmentInputs& in, const ShadingLights& lights,
                                   LightCullScratch& scratch, const RadianceOutputs& out) {
     CulledWork work;
     if (in.count == 0) return work;
-    if (scratch.all.count() != lights.count() || scratch.all.spot_begin != lights.spot_begin ||
-        scratch.all.directional_begin != lights.directional_begin)
-        scratch.all.assign_all(lights);  // 0 .. count in order: nothing else can change
-    select_reaching(lights, scratch.all, fragment_bounds(in), scratch.tile);
+    select_reaching(lights, lights.every, fragment_bounds(in), scratch.tile);
     work.tile_lights = scratch.tile.count();
     for (std::size_t begin = 0; begin < in.count; begin += kClusterFragments) {
         const std::size_t count = std::min(kClusterFragments, in.count - begin);

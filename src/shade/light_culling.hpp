@@ -40,6 +40,8 @@ WorldBounds fragment_bounds(const FragmentInputs& in);
 // as distance_squared does, and rounding is monotonic, so the box's squared
 // gap never exceeds any inside point's distance_squared; a light is dropped
 // only when that gap exceeds its range². Lights without a range are kept.
+// Alike, kReachesAll is set where the box's farthest point is within range
+// (or the light has none), so that every point inside is.
 void select_reaching(const ShadingLights& lights, const LightSelection& from, const WorldBounds& bounds,
                      LightSelection& out);
 
@@ -50,7 +52,7 @@ static_assert(kClusterFragments % kLanePadding == 0);
 
 // A worker's selections, reserved once (reserve) so that culling allocates nothing per tile.
 struct LightCullScratch {
-    LightSelection all, tile, cluster;
+    LightSelection tile, cluster;
     void reserve(std::size_t light_count);
 };
 

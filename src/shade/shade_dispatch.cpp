@@ -75,11 +75,21 @@ void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Lig
             if (light.type == type) push_light(*this, light);
     }
     for (const float r : range) any_range = any_range || r > 0.0f;
+    every.assign_all(*this);
+}
+
+void LightSelection::push(const ShadingLights& lights, std::uint32_t entry) {
+    const std::uint32_t j = entry & kLightIndexMask;
+    index.push_back(entry);
+    x.push_back(lights.pos_x[j]), y.push_back(lights.pos_y[j]), z.push_back(lights.pos_z[j]);
+    reach_sq.push_back(lights.range[j] > 0.0f ? lights.range_sq[j] : INFINITY);
 }
 
 void LightSelection::assign_all(const ShadingLights& lights) {
-    index.resize(lights.count());
-    for (std::size_t j = 0; j < index.size(); ++j) index[j] = std::uint32_t(j);
+    for (auto* column : {&x, &y, &z, &reach_sq}) column->clear();
+    index.clear();
+    for (std::size_t j = 0; j < lights.count(); ++j)
+        push(lights, std::uint32_t(j) | (lights.range[j] > 0.0f ? 0 : kReachesAll));
     spot_begin = lights.spot_begin;
     directional_begin = lights.directional_begin;
 }
@@ -111,8 +121,8 @@ void shade_fragments_in_range_scalar(const FragmentInputs& in, const ShadingLigh
         const ShadingPoint p =
             shading_point(world_pos, load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos);
         glm::vec3 lo(0.0f);
-        for (const std::uint32_t j : selection.index) {
-            const Light& light = lights.records[j];
+        for (const std::uint32_t entry : selection.index) {
+            const Light& light = lights.records[entry & kLightIndexMask];  // tested whatever kReachesAll says
             if (light_reaches(light, world_pos)) lo += reflected_radiance(p, light);
         }
         const glm::vec3 radiance = ambient_radiance(material) + lo;

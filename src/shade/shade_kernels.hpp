@@ -45,6 +45,31 @@ struct RadianceOutputs {
     float* b = nullptr;
 };
 
+struct ShadingLights;
+
+// Some of a ShadingLights' lights: indices into it, in its type-group order,
+// and where the spots and directionals begin among them (light culling). An
+// entry is a light's index, with kReachesAll set where the light is known to
+// reach every fragment shaded with the selection (it has no range, or they all
+// lie within it): the kernels then skip the per-lane range test.
+inline constexpr std::uint32_t kReachesAll = 1u << 31;
+inline constexpr std::uint32_t kLightIndexMask = kReachesAll - 1;
+struct LightSelection {
+    std::vector<std::uint32_t> index;
+    std::size_t spot_begin = 0, directional_begin = 0;
+    // The selected lights' positions and range², +inf where unlimited, beside
+    // `index`: what culling tests a selection with, packed so that the test
+    // vectorizes. `verdict` is select_reaching's scratch.
+    std::vector<float> x, y, z, reach_sq;
+    std::vector<std::uint32_t> verdict;
+
+    std::size_t count() const { return index.size(); }
+    // Every light of `lights` (kReachesAll where it has no range).
+    void assign_all(const ShadingLights& lights);
+    // Appends light j of `lights`, entry = j with or without kReachesAll.
+    void push(const ShadingLights& lights, std::uint32_t entry);
+};
+
 // The lights and camera in SoA form, built once per frame, grouped by type so
 // that the kernels branch per group, never per lane or per light: points
 // [0, spot_begin), spots [spot_begin, directional_begin), directionals
@@ -63,23 +88,13 @@ struct ShadingLights {
     std::vector<float> range_sq;               // range·range (float), the edge shade_fragments_in_range cuts at
     std::vector<Light> records;                // the same lights as given, for the scalar path
     bool any_range = false;                    // whether culling could drop any light at all
+    LightSelection every;                      // every light, where light culling starts
 
     std::size_t count() const { return pos_x.size(); }
     // Every light of `lights`, in type groups.
     void assign(const glm::vec3& camera_position, std::span<const Light> lights);
     // Room for `capacity` lights, so that later assigns and culls up to that count allocate nothing.
     void reserve(std::size_t capacity);
-};
-
-// Some of a ShadingLights' lights: indices into it, in its type-group order,
-// and where the spots and directionals begin among them (light culling).
-struct LightSelection {
-    std::vector<std::uint32_t> index;
-    std::size_t spot_begin = 0, directional_begin = 0;
-
-    std::size_t count() const { return index.size(); }
-    // Every light of `lights`.
-    void assign_all(const ShadingLights& lights);
 };
 
 // The raw arrays of ShadingLights, as the per-ISA kernels take them (no

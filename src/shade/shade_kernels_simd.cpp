@@ -61,8 +61,11 @@ struct Surface {
 // lo += one light's reflected radiance: l is the unit direction towards the
 // light, attenuation the radiance arriving per unit of light colour. Always
 // inlined: a call would move the accumulators through memory in the hot loop.
-// Accumulate(lo_c, term) adds one channel's term: all lanes, or (InRange) the
-// lanes the light reaches.
+// Accumulate(lo_c, a, b) adds one channel's term a·b: all lanes, or (InRange)
+// the lanes the light reaches. As one explicit fma (fused where the ISA has
+// FMA): left to the compiler, whether it fuses would depend on the code
+// around it, and a light would add different bits where a cluster needs the
+// lane mask and where it does not.
 template <class Accumulate>
 [[gnu::always_inline]] inline void add_light(Vec3& lo, const Surface& s, const Vec3& l, const Batch& attenuation, float color_r,
                       float color_g, float color_b, Accumulate&& accumulate) {
@@ -85,7 +88,7 @@ template <class Accumulate>
     // lo += (k_D·albedo/π + specular) · radiance · N·L, per channel
     const auto add_channel = [&](Batch& lo_c, const Batch& f0_c, const Batch& diffuse_c, float color_c) {
         const Batch f = fresnel_schlick(fresnel_weight, f0_c);
-        accumulate(lo_c, ((Batch(1.0f) - f) * diffuse_c + specular_scale * f) * (irradiance_scale * Batch(color_c)));
+        accumulate(lo_c, (Batch(1.0f) - f) * diffuse_c + specular_scale * f, irradiance_scale * Batch(color_c));
     };
     add_channel(lo.x, s.f0.x, s.diffuse.x, color_r);
     add_channel(lo.y, s.f0.y, s.diffuse.y, color_g);
@@ -95,7 +98,7 @@ template <class Accumulate>
 // Light k of the batch's list: light k itself, or (InRange) light index[k].
 template <bool InRange>
 [[gnu::always_inline]] inline std::size_t light_id(const LightArrays& lights, std::size_t k) {
-    if constexpr (InRange) return lights.index[k];
+    if constexpr (InRange) return lights.index[k] & kLightIndexMask;
     else return k;
 }
 
@@ -130,55 +133,60 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
     const Batch diffuse_scale = (Batch(1.0f) - metallic) * Batch(1.0f / kPi);
     s.diffuse = albedo * diffuse_scale;
 
-    const auto add_all = [](Batch& lo_c, const Batch& term) { lo_c += term; };
-    // A point or spot light: which lanes it reaches (all without InRange or
-    // without a range), and 1/distance to it. Returns false where it reaches
-    // none: the light is skipped, which adds the same as adding nothing per lane.
+    Vec3 lo = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
+    const auto add_all = [](Batch& lo_c, const Batch& a, const Batch& b) { lo_c = xsimd::fma(a, b, lo_c); };
+    // A point or spot light, light k of the list: 1/distance to it, and which
+    // lanes it reaches: all (without InRange, or kReachesAll: no lane test),
+    // or those within range (`masked`). Returns false where it reaches none:
+    // the light is skipped, which adds the same as adding nothing per lane.
     Mask reaches(true);
+    bool masked = false;
     Batch inv_distance;
-    const auto reach = [&](std::size_t j, const Vec3& to_light) {
+    // The lane test rounds as the scalar distance_squared does; the shading
+    // itself is the uncut kernel's, so that a light adds the same bits to a lane
+    // whether or not its cluster needed the test.
+    const auto reach = [&](std::size_t k, std::size_t j, const Vec3& to_light) {
         if constexpr (InRange) {
-            const Batch distance_sq = length_squared_unfused(to_light);
-            if (lights.range[j] > 0.0f) {
-                reaches = distance_sq <= Batch(lights.range_sq[j]);
+            masked = !(lights.index[k] & kReachesAll);
+            if (masked) {
+                reaches = length_squared_unfused(to_light) <= Batch(lights.range_sq[j]);
                 if (!xsimd::any(reaches)) return false;
-            } else {
-                reaches = Mask(true);
             }
-            inv_distance = Batch(1.0f) / xsimd::sqrt(distance_sq);
-        } else {
-            inv_distance = inverse_length(to_light);
         }
+        inv_distance = inverse_length(to_light);
         return true;
     };
-    const auto add_reached = [&](Batch& lo_c, const Batch& term) {
-        if constexpr (InRange) lo_c = xsimd::select(reaches, lo_c + term, lo_c);
-        else lo_c += term;
+    const auto add_masked = [&](Batch& lo_c, const Batch& a, const Batch& b) {
+        lo_c = xsimd::select(reaches, xsimd::fma(a, b, lo_c), lo_c);
+    };
+    // add_light with the accumulation `reach` chose (two inlined copies: no mask in the common case).
+    const auto add_reached_light = [&](const Vec3& l, const Batch& attenuation, std::size_t j) {
+        if (InRange && masked)
+            add_light(lo, s, l, attenuation, lights.color_r[j], lights.color_g[j], lights.color_b[j], add_masked);
+        else
+            add_light(lo, s, l, attenuation, lights.color_r[j], lights.color_g[j], lights.color_b[j], add_all);
     };
 
     // One loop per light type: the type is uniform over a light, so it costs no lane math.
-    Vec3 lo = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
     for (std::size_t k = 0; k < lights.spot_begin; ++k) {  // point: radiance = color / distance²
         const std::size_t j = light_id<InRange>(lights, k);
         const Vec3 to_light =
             Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        if (!reach(j, to_light)) continue;
-        add_light(lo, s, to_light * inv_distance, inv_distance * inv_distance, lights.color_r[j], lights.color_g[j],
-                  lights.color_b[j], add_reached);
+        if (!reach(k, j, to_light)) continue;
+        add_reached_light(to_light * inv_distance, inv_distance * inv_distance, j);
     }
     for (std::size_t k = lights.spot_begin; k < lights.directional_begin; ++k) {  // spot: a point light × cone factor
         const std::size_t j = light_id<InRange>(lights, k);
         const Vec3 to_light =
             Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        if (!reach(j, to_light)) continue;
+        if (!reach(k, j, to_light)) continue;
         const Vec3 l = to_light * inv_distance;
         // cos θ = direction · (light to fragment) = −(direction · L)
         const Batch cos_theta = -dot(Vec3{Batch(lights.dir_x[j]), Batch(lights.dir_y[j]), Batch(lights.dir_z[j])}, l);
         const Batch cone = (cos_theta - Batch(lights.cos_outer[j])) * Batch(lights.inv_cone_width[j]);
         // clamp to [0, 1], NaN first so that it becomes 0
         const Batch cone_factor = xsimd::min(xsimd::max(cone, Batch(0.0f)), Batch(1.0f));
-        add_light(lo, s, l, inv_distance * inv_distance * cone_factor, lights.color_r[j], lights.color_g[j],
-                  lights.color_b[j], add_reached);
+        add_reached_light(l, inv_distance * inv_distance * cone_factor, j);
     }
     for (std::size_t k = lights.directional_begin; k < lights.count; ++k) {  // directional: L = −direction, no attenuation
         const std::size_t j = light_id<InRange>(lights, k);

@@ -105,7 +105,14 @@ TEST_CASE("select_reaching keeps the lights whose range sphere meets the bounds"
     CHECK(every.count() == all.count());
     select_reaching(all, every, bounds, kept);
     std::vector<float> ids;
-    for (std::uint32_t j : kept.index) ids.push_back(all.color_r[j]);
+    for (std::uint32_t entry : kept.index) ids.push_back(all.color_r[entry & kLightIndexMask]);
+    const auto reaches_all = [&](const LightSelection& s) {
+        std::vector<bool> flags;
+        for (std::uint32_t entry : s.index) flags.push_back((entry & kReachesAll) != 0);
+        return flags;
+    };
+    // Only the lights without a range reach all of the cube: light 4 is inside, but only 0.1 far.
+    CHECK(reaches_all(kept) == std::vector<bool>{false, false, false, true, false, false, true});
     // Type groups first (points, spots, directionals), scene order within them.
     CHECK(ids == std::vector<float>{0.0f, 2.0f, 4.0f, 5.0f, 8.0f, 7.0f, 9.0f});
     CHECK(kept.spot_begin == 5);
@@ -116,8 +123,10 @@ TEST_CASE("select_reaching keeps the lights whose range sphere meets the bounds"
     LightSelection fewer;
     select_reaching(all, kept, WorldBounds{glm::vec3(0.45f), glm::vec3(0.55f)}, fewer);
     ids.clear();
-    for (std::uint32_t j : fewer.index) ids.push_back(all.color_r[j]);
+    for (std::uint32_t entry : fewer.index) ids.push_back(all.color_r[entry & kLightIndexMask]);
     CHECK(ids == std::vector<float>{0.0f, 4.0f, 5.0f, 7.0f, 9.0f});
+    // Light 4 reaches all of this box (its far corner is 0.05·√3 = 0.087 away), lights 0 and 7 only part.
+    CHECK(reaches_all(fewer) == std::vector<bool>{false, true, true, false, true});
     CHECK(fewer.spot_begin == 3);
     CHECK(fewer.directional_begin == 4);
 
@@ -139,13 +148,13 @@ TEST_CASE("fragment_bounds") {
     CHECK(b.max == glm::vec3(3.0f, 0.5f, 9.0f));
 }
 
-TEST_CASE("select_reaching never drops a light that reaches a point of the box, at the range's edge") {
+TEST_CASE("select_reaching never drops a light that reaches a point of the box, nor marks one that misses one") {
     // Boxes around random points; lights whose range sphere passes through (or
     // within an ulp or two of) one of the points, seen from every side: the
     // rounding of the box test must never fall on the wrong side of the
     // rounding of the per-point test.
     std::mt19937 rng(1301);
-    std::size_t reached = 0, dropped = 0;
+    std::size_t reached = 0, dropped = 0, flagged = 0, wrongly_flagged = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         std::vector<glm::vec3> points(std::uniform_int_distribution<int>(1, 6)(rng));
         const glm::vec3 centre = uniform3(rng, -50.0f, 50.0f);
@@ -171,16 +180,26 @@ TEST_CASE("select_reaching never drops a light that reaches a point of the box, 
         every.assign_all(all);
         select_reaching(all, every, box, kept);
         for (std::size_t j = 0; j < all.count(); ++j) {
-            const bool selected = std::find(kept.index.begin(), kept.index.end(), j) != kept.index.end();
-            const bool reaches = std::any_of(points.begin(), points.end(),
-                                             [&](const glm::vec3& p) { return light_reaches(all.records[j], p); });
-            if (reaches) ++reached;
-            if (reaches && !selected) ++dropped;
+            const auto entry = std::find_if(kept.index.begin(), kept.index.end(),
+                                            [&](std::uint32_t e) { return (e & kLightIndexMask) == j; });
+            const bool selected = entry != kept.index.end();
+            const auto reaches = [&](const glm::vec3& p) { return light_reaches(all.records[j], p); };
+            const bool reaches_any = std::any_of(points.begin(), points.end(), reaches);
+            if (reaches_any) ++reached;
+            if (reaches_any && !selected) ++dropped;
+            // kReachesAll promises every point: the kernels then test no lane.
+            if (selected && (*entry & kReachesAll)) {
+                ++flagged;
+                if (!std::all_of(points.begin(), points.end(), reaches)) ++wrongly_flagged;
+            }
         }
     }
     CAPTURE(reached);
     CHECK(reached > 10000);  // the edge cases were really there
     CHECK(dropped == 0);
+    CAPTURE(flagged);
+    CHECK(flagged > 1000);
+    CHECK(wrongly_flagged == 0);
 }
 
 TEST_CASE("the range cut: scalar is shade_pbr_within_range, and every ISA cuts the same lanes") {
