@@ -102,7 +102,7 @@ std::map<int, int> logged_frames(const fs::path& log) {
 
 }  // namespace
 
-TEST_CASE("a frame of a range is bit-identical to the same frame rendered alone; without --frames, frame 0") {
+TEST_CASE("a frame of a range is bit-identical to the same frame rendered alone, without --frames, frame 0") {
     const fs::path dir = fresh_dir("batch_frames");
     const fs::path scene = write_scene(dir);
     const Run all = tessera_render(dir, {scene.string(), "--frames", "0-23", "-o", (dir / "all_{frame:02}.png").string()});

@@ -47,7 +47,7 @@ std::map<std::string, std::string> slurm_task(const char* id, const char* min, c
 
 }  // namespace
 
-TEST_CASE("--shard I/N: 1-based text, 0-based index; malformed values refused") {
+TEST_CASE("--shard I/N: 1-based text, 0-based index, malformed values refused") {
     CHECK(parse_shard("1/1") == Shard{0, 1});
     CHECK(parse_shard("3/7") == Shard{2, 7});
     CHECK(shard_text(Shard{2, 7}) == "3/7");

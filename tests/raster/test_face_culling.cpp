@@ -36,7 +36,7 @@ TEST_CASE("culling drops a triangle by the sign of its image-space area, before 
     CHECK_FALSE(raster::setup_triangle(viewport, back, refs, 4, Culling::drop_positive_area));
 }
 
-TEST_CASE("every ISA's setup kernel culls what the scalar setup culls; the two cullings split the unculled set") {
+TEST_CASE("every ISA's setup kernel culls what the scalar setup culls, the two cullings split the unculled set") {
     const geometry::Viewport viewport{320, 240};
     const geometry::GuardBand guard(viewport.width, viewport.height);
     std::mt19937 rng(7);

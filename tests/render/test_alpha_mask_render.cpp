@@ -87,7 +87,7 @@ TEST_CASE("alpha mask: alpha × factor against the cutoff, glTF's rule (alpha >=
     CHECK(seen_at(renderer.render(opaque), 22, 32) == Seen::front);
 }
 
-TEST_CASE("alpha mask: every ISA and thread count give the scalar image; 4x MSAA agrees away from edges") {
+TEST_CASE("alpha mask: every ISA and thread count give the scalar image, 4x MSAA agrees away from edges") {
     Scene scene = masked_scene(1.0f, 0.5f, true);
     scene.objects[0].model = glm::rotate(scene.objects[0].model, 0.4f, glm::vec3(0, 1, 0));  // slanted mask edge
     Renderer scalar({.threads = 1, .isa = "scalar"});

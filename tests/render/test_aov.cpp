@@ -214,7 +214,7 @@ TEST_CASE("AOV planes are bit-identical for any thread count and tile size") {
     }
 }
 
-TEST_CASE("AOV lists name each AOV; anything else is refused with the list of names") {
+TEST_CASE("AOV lists name each AOV, anything else is refused with the list of names") {
     AovSet set;
     parse_aov_list("position", set);
     CHECK(set.contains(Aov::position));

@@ -45,7 +45,7 @@ bool centre_drawn(const Scene& scene, const char* isa = "auto") {
 
 }  // namespace
 
-TEST_CASE("single-sided materials cull back faces; a mirroring transform swaps front and back") {
+TEST_CASE("single-sided materials cull back faces, a mirroring transform swaps front and back") {
     const glm::vec3 plain(1.0f), mirrored(1.0f, -1.0f, 1.0f);
     for (const bool grazing : {false, true}) {
         CAPTURE(grazing);

@@ -51,7 +51,7 @@ TEST_CASE("a scene without [animation] is still: one frame, frame 0 only") {
     CHECK_THROWS_AS(set_scene_frame(scene, 1), std::out_of_range);
 }
 
-TEST_CASE("orbit: defaults start at [camera]; a quarter of the frames is a quarter turn") {
+TEST_CASE("orbit: defaults start at [camera], a quarter of the frames is a quarter turn") {
     Scene scene = parse("[animation]\nframes = 8\nfps = 30\n[animation.orbit]\n");
     REQUIRE(scene.animation != nullptr);
     CHECK(scene_frame_count(scene) == 8);
@@ -77,7 +77,7 @@ TEST_CASE("orbit keys override the defaults") {
     CHECK(near(scene.camera.position, {1, -1, 2}));
 }
 
-TEST_CASE("camera keyframes: linear is exact between keys; smooth passes through keys and eases at the ends") {
+TEST_CASE("camera keyframes: linear is exact between keys, smooth passes through keys and eases at the ends") {
     const std::string keys = "keys = [ { frame = 0, position = [0, 0, 10], fov_y = 40 }, { frame = 10, position = [10, 0, 10] },"
                              " { frame = 20, position = [10, 0, 20], fov_y = 60 } ]\n";
     Scene linear = parse("[animation]\nframes = 21\n[animation.camera]\ninterpolation = \"linear\"\n" + keys);
@@ -104,7 +104,7 @@ TEST_CASE("camera keyframes: linear is exact between keys; smooth passes through
     CHECK(near((after - before) / 0.002f, {0.5f, 0, 0.5f}, 1e-2f));
 }
 
-TEST_CASE("object keyframes: rotate, translate, scale and colour; a shared material keeps its colour elsewhere") {
+TEST_CASE("object keyframes: rotate, translate, scale and colour, a shared material keeps its colour elsewhere") {
     Scene scene = parse("[animation]\nframes = 5\n"
                         "[[animation.objects]]\nobject = 0\n"
                         "keys = [ { frame = 0, rotate = [0, 0, 0], color = [1, 0, 0] }, { frame = 4, rotate = [0, 360, 0], color = [0, 0, 1] } ]\n"

@@ -163,7 +163,7 @@ TEST_CASE("glTF KHR_texture_transform and TEXCOORD_1: the base colour map's mapp
     }
 }
 
-TEST_CASE("glTF cameras: every camera selectable by index or name; orthographic and unplaced ones refused clearly") {
+TEST_CASE("glTF cameras: every camera selectable by index or name, orthographic and unplaced ones refused clearly") {
     // Cameras 1 ('top', on node 'high' at y = 20) and 2 (orthographic) besides the document's unnamed camera 0.
     std::string text = test::replaced(
         test::embedded_test_gltf(), R"("cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1, "aspectRatio": 2.0}}])",
