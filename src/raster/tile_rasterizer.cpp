@@ -207,10 +207,11 @@ void rasterize_tiny(simd::Isa isa, const RasterTriangle& t, std::uint32_t triang
     }
 }
 
-// A box at most kStampWidth wide whose edge values fit in int32 (stamp_fits_int32).
+// The kernels' record of block p with its edge values narrowed to int32 (they fit: fits_int32 or
+// stamp_fits_int32).
 [[gnu::always_inline]] inline
-void rasterize_stamp(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
-                     const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+EdgeBlock32 int32_block(const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
+                        const TileRect& tile) {
     EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
     const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
     for (int k = 0; k < 3; ++k) {
@@ -218,6 +219,14 @@ void rasterize_stamp(simd::Isa isa, const RasterTriangle& t, const TriangleInTil
         block.step_x[k] = std::int32_t(e[k]->step_x);
         block.step_y[k] = std::int32_t(e[k]->step_y);
     }
+    return block;
+}
+
+// A box at most kStampWidth wide whose edge values fit in int32 (stamp_fits_int32).
+[[gnu::always_inline]] inline
+void rasterize_stamp(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
+                     const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
+    EdgeBlock32 block = int32_block(t, p, triangle_id, tile);
     const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
                         buffers.side};
     switch (isa) {
@@ -233,13 +242,7 @@ void rasterize_stamp(simd::Isa isa, const RasterTriangle& t, const TriangleInTil
 [[gnu::always_inline]] inline
 void rasterize_int32(simd::Isa isa, const RasterTriangle& t, const TriangleInTile& p, bool fully_covered,
                      std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
-    EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
-    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
-    for (int k = 0; k < 3; ++k) {
-        block.row[k] = std::int32_t(e[k]->row);
-        block.step_x[k] = std::int32_t(e[k]->step_x);
-        block.step_y[k] = std::int32_t(e[k]->step_y);
-    }
+    EdgeBlock32 block = int32_block(t, p, triangle_id, tile);
     block.fully_covered = fully_covered;
     run_kernel(isa, block, nullptr, buffers, counters);
 }
