@@ -125,6 +125,7 @@ struct ProfileSpan {
     std::uint64_t triangles = 0;  // chunk: triangles submitted; tile: triangles rasterized in it
     std::uint64_t fragments = 0;  // tile: visible fragments shaded
     std::uint32_t lights = 0;     // tile: lights shaded there, after culling
+    std::uint64_t fragment_lights = 0;  // tile: Σ fragments × the lights shaded for each (clusters cull more than the tile)
 };
 
 // A frame's timeline: the passes, then every chunk and tile span sorted by

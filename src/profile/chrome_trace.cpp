@@ -52,7 +52,7 @@ void add_frame(json& events, int number, const TracedFrame& frame) {
             json tile = complete_event("tile " + std::to_string(s.index), "tile", s.worker + 1, start, duration);
             tile["args"] = {{"tile", s.index}, {"x", x * p.tile_size}, {"y", y * p.tile_size},
                             {"triangles", s.triangles}, {"fragments", s.fragments}, {"lights", s.lights},
-                            {"fragment_lights", s.fragments * s.lights}};
+                            {"fragment_lights", s.fragment_lights}};
             events.push_back(std::move(tile));
             // The steps follow each other from the tile's start; the last ends with it.
             double at = start;

@@ -15,7 +15,7 @@ namespace tessera::profile {
 namespace {
 
 double tile_cost(const ProfileSpan& tile, HeatmapMetric metric) {
-    return metric == HeatmapMetric::time ? tile.end_ms - tile.start_ms : double(tile.fragments) * tile.lights;
+    return metric == HeatmapMetric::time ? tile.end_ms - tile.start_ms : double(tile.fragment_lights);
 }
 
 // Per tile, the median cost over the frames (timings are noisy; work is the same every frame).

@@ -571,6 +571,7 @@ void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearVa
     s.rasterize_ms += ms_between(raster_start, t1);
     std::size_t count = 0;
     s.tile_light_count = 0;
+    const std::uint64_t fragment_lights_before = s.fragment_lights;
     auto t2 = t1;
     if (drawn) {
         count = gather();
@@ -595,6 +596,7 @@ void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearVa
         span.rasterize_ms = ms_between(raster_start, t1), span.shade_ms = ms_between(t1, t2);
         span.resolve_ms = ms_between(t2, t3);
         span.triangles = s.tile_triangles, span.fragments = count, span.lights = s.tile_light_count;
+        span.fragment_lights = s.fragment_lights - fragment_lights_before;
         record_span(s, span, raster_start, t3);
     }
 }

@@ -59,7 +59,7 @@ TEST_CASE("profile: spans account for every chunk and tile once, inside their pa
         CHECK(tiles.end_ms == doctest::Approx(p.total_ms).epsilon(1e-9));
 
         std::set<int> chunks_seen, tiles_seen;
-        std::uint64_t triangles_in = 0, fragments = 0;
+        std::uint64_t triangles_in = 0, fragments = 0, fragment_lights = 0;
         std::map<int, double> worker_busy_until;
         for (std::size_t i = 3; i < p.spans.size(); ++i) {
             const ProfileSpan& s = p.spans[i];
@@ -83,12 +83,33 @@ TEST_CASE("profile: spans account for every chunk and tile once, inside their pa
                 fragments += s.fragments;
                 CHECK(s.lights <= scene.lights.size());
                 if (s.fragments > 0) CHECK(s.lights == scene.lights.size());  // no ranges: nothing culled
+                CHECK(s.fragment_lights == s.fragments * s.lights);
+                fragment_lights += s.fragment_lights;
             }
         }
         CHECK(tiles_seen.size() == std::size_t(p.tiles_x * p.tiles_y));
         CHECK(triangles_in == stats.triangles_in);
         CHECK(fragments == stats.fragments_shaded);
+        CHECK(fragment_lights == stats.fragment_lights);
     }
+}
+
+TEST_CASE("profile: with light ranges, each tile records the fragment-lights its clusters shaded") {
+    Scene scene = load_scene_file(test::scene_path("many_lights.toml"));
+    scene.width = 320, scene.height = 180;
+    Renderer renderer(profiled(2));
+    renderer.render(scene);
+    std::uint64_t fragment_lights = 0;
+    bool culled_below_tile = false;  // some tile's clusters shaded fewer lights than the tile's list
+    for (const ProfileSpan& s : renderer.last_frame_profile().spans) {
+        if (s.kind != ProfileSpan::Kind::tile) continue;
+        CHECK(s.fragment_lights <= s.fragments * s.lights);
+        culled_below_tile = culled_below_tile || s.fragment_lights < s.fragments * s.lights;
+        fragment_lights += s.fragment_lights;
+    }
+    CHECK(fragment_lights == renderer.last_frame_stats().fragment_lights);
+    CHECK(fragment_lights > 0);
+    CHECK(culled_below_tile);
 }
 
 TEST_CASE("profile: off by default, and recording it changes no pixel") {
@@ -186,7 +207,7 @@ TEST_CASE("profile: the work heat map tints the busiest tile hottest and leaves 
     const ProfileSpan* empty = nullptr;
     for (const ProfileSpan& s : p.spans) {
         if (s.kind != ProfileSpan::Kind::tile) continue;
-        if (!busiest || s.fragments * s.lights > busiest->fragments * busiest->lights) busiest = &s;
+        if (!busiest || s.fragment_lights > busiest->fragment_lights) busiest = &s;
         if (s.fragments == 0) empty = &s;
     }
     REQUIRE(busiest != nullptr);
