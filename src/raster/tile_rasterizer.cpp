@@ -187,11 +187,12 @@ void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide
 // Whether every corner lies within kTinySpan of the others in x and in y.
 // Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare.
 [[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
-    const auto near = [](std::int32_t a, std::int32_t b) {
+    // Each test as 0 or 1, combined with & (not &&, which would branch).
+    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
         return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
     };
-    return near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
-           near(t.y[1], t.y[2]) & near(t.y[2], t.y[0]);
+    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
 }
 
 [[gnu::always_inline]] inline
