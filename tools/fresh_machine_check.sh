@@ -89,7 +89,9 @@ if [ -f "$tarball" ] && [ -n "$(find "$tarball" -mtime -"$max_age_days")" ]; the
   echo "== reusing the cached Debian 12 root $tarball"
 else
   echo "== building a minimal Debian 12 root with mmdebstrap ($(date +%T))"
-  mmdebstrap --quiet --variant=apt --include=ca-certificates,git bookworm "$tarball.part" "${sources[@]}"
+  rm -rf "$tarball" "$tarball.part"  # a stale or half-made one (mv would move into a directory)
+  # --format=tar: the ".part" name would otherwise make mmdebstrap write a directory.
+  mmdebstrap --quiet --format=tar --variant=apt --include=ca-certificates,git bookworm "$tarball.part" "${sources[@]}"
   mv "$tarball.part" "$tarball"
 fi
 
