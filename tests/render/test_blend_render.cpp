@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "image/resolve.hpp"
+#include "render/isa_agreement.hpp"
 #include "shade/pbr_reference.hpp"
 #include "tessera/renderer.hpp"
 
@@ -203,20 +204,7 @@ TEST_CASE("blend: the same image with any thread count and tile size, every ISA 
         }
         Renderer scalar({.threads = 2, .isa = "scalar"});
         const RenderedImage scalar_image = scalar.render(scene);
-        for (const char* isa : {"sse4", "avx2", "avx512"}) {
-            CAPTURE(isa);
-            std::optional<Renderer> renderer;
-            try {
-                renderer.emplace(RenderSettings{.threads = 2, .isa = isa});
-            } catch (const std::invalid_argument&) {
-                continue;
-            }
-            const RenderedImage& image = renderer->render(scene);
-            int worst = 0;
-            for (std::size_t i = 0; i < image.display.size(); ++i)
-                worst = std::max(worst, std::abs(int(image.display[i]) - int(scalar_image.display[i])));
-            CHECK(worst <= 1);
-        }
+        test::check_every_isa_within(scene, scalar_image, 1, {.threads = 2});
     }
 }
 

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "tessera/image_io.hpp"
+#include "render/isa_agreement.hpp"
 #include "tessera/renderer.hpp"
 #include "test_paths.hpp"
 
@@ -34,21 +35,7 @@ TEST_CASE("every shading ISA renders the spheres scene within 1/255 of the scala
     const Scene scene = load_scene_file(test::scene_path("spheres.toml"));
     Renderer scalar({.isa = "scalar"});
     const RenderedImage reference = scalar.render(scene);
-    for (const char* isa : {"sse4", "avx2", "avx512"}) {
-        CAPTURE(isa);
-        std::optional<Renderer> renderer;
-        try {
-            renderer.emplace(RenderSettings{.isa = isa});
-        } catch (const std::invalid_argument& e) {
-            MESSAGE("skipped: " << e.what());
-            continue;
-        }
-        const RenderedImage& image = renderer->render(scene);
-        int worst = 0;
-        for (std::size_t i = 0; i < image.display.size(); ++i)
-            worst = std::max(worst, std::abs(int(image.display[i]) - int(reference.display[i])));
-        CHECK(worst <= 1);
-    }
+    test::check_every_isa_within(scene, reference, 1);
 }
 
 TEST_CASE("renderer settings are validated") {

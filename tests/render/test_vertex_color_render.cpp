@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "tessera/renderer.hpp"
+#include "render/isa_agreement.hpp"
 
 using namespace tessera;
 
@@ -130,20 +131,7 @@ TEST_CASE("vertex colours: every ISA within 1/255 of scalar, every thread count 
         Renderer renderer({.threads = threads, .isa = "scalar"});
         CHECK(renderer.render(scene).radiance == reference.radiance);
     }
-    for (const char* isa : {"sse4", "avx2", "avx512"}) {
-        CAPTURE(isa);
-        std::optional<Renderer> renderer;
-        try {
-            renderer.emplace(RenderSettings{.threads = 2, .isa = isa});
-        } catch (const std::invalid_argument&) {
-            continue;
-        }
-        const RenderedImage& image = renderer->render(scene);
-        int worst = 0;
-        for (std::size_t i = 0; i < image.display.size(); ++i)
-            worst = std::max(worst, std::abs(int(image.display[i]) - int(reference.display[i])));
-        CHECK(worst <= 1);
-    }
+    test::check_every_isa_within(scene, reference, 1, {.threads = 2});
     // The clipped floor still shows the colours' gradient near the camera: red there.
     const std::size_t bottom = 3 * (std::size_t(95) * 160 + 80);
     CHECK(reference.radiance[bottom] > 2.0f * reference.radiance[bottom + 2]);
