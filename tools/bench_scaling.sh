@@ -7,7 +7,7 @@
 # sets the rounds, BUILD_DIR the build folder (default build/, Release). The result is
 # the median over rounds of each side's median frame time, and the median of the
 # per-round speed-ups; then each pass's (wall) and step's (busy time / threads) medians and
-# speed-ups. EXTRA_ARGS (a bash array's words, e.g. "--msaa 4 --cull-back-faces") go to both benches.
+# speed-ups. EXTRA_ARGS (bench options split at spaces, e.g. "--msaa 4 --cull-back-faces") go to both sides.
 set -euo pipefail
 source "$(dirname "$0")/bench_args.sh"
 parse_bench_args bench_scaling "$@"
