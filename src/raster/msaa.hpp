@@ -7,22 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "raster/msaa_pattern.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"
 
 namespace tessera::raster {
-
-inline constexpr int kMsaaSamples = 4;
-
-// GL's 4× pattern, as llvmpipe reports it (GL_SAMPLE_POSITION) in window space,
-// y up from the pixel's bottom: (0.375, 0.125), (0.875, 0.375), (0.125, 0.625),
-// (0.625, 0.875) — the standard numbers of D3D and Vulkan, which measure y down
-// instead. In image space (y down from the pixel's top) they are (0.375, 0.875),
-// (0.875, 0.625), (0.125, 0.375), (0.625, 0.125); as offsets from the pixel
-// centre in 24.8 fixed point, exact multiples of 32.
-inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetX = {-32, 96, -96, 32};
-inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetY = {96, 32, -32, -96};
 
 // Per-sample results of rasterizing one tile: sample s of tile pixel p at
 // [kMsaaSamples · p + s]. Owned by a worker and reused from tile to tile.
@@ -32,7 +22,9 @@ struct TileSamples {
     std::vector<std::uint32_t> triangle;  // its triangle id, where depth < 1
     // Which of the tile's fragments (TileFragments) colours the sample; -1: background.
     std::vector<std::int32_t> fragment;
-    void reset(int tile_side);            // clears depth to 1 (allocates only when the side grows)
+    // Clears depth to 1 (allocates only when the side grows). depth and
+    // triangle are padded past the last pixel for the vector kernels.
+    void reset(int tile_side);
 };
 
 // The pixels' fragments: one per pixel and distinct triangle among its
@@ -56,6 +48,12 @@ struct TileFragments {
 // depth test; discarding drops all the triangle's samples in that pixel.
 void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                              TileSamples& samples, RasterCounters& counters, const FragmentTest* test = nullptr);
+// The same with the ISA's vector kernel (msaa_kernels.hpp) where every edge
+// value fits in int32, the scalar loop otherwise and for Isa::scalar:
+// bit-identical samples and counters either way. No fragment test: with one,
+// call the scalar loop above (its test runs per pixel, in sample order).
+void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters);
 
 // λ1, λ2 of a set-up triangle at a point given in fixed point (image space).
 inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
