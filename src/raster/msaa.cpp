@@ -89,14 +89,21 @@ bool msaa_edge_fits_int32(const EdgeStepper& e, int width, int height) {
     return reach < (std::int64_t(1) << 31) - 1;
 }
 
-}  // namespace
+// Whether every corner lies within kTinySpan of the others in x and in y
+// (as tile_rasterizer.cpp's test, branch-free): then every edge value the
+// kernel meets over the triangle's box is below 2^26.
+[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
+    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
+        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
+    };
+    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
+}
 
-void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
-                             TileSamples& samples, RasterCounters& counters) {
-    if (isa == simd::Isa::scalar) return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
-    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
-    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
-    if (x_begin >= x_end || y_begin >= y_end) return;
+// Other triangles: edges set up in int64, narrowed to int32 where they fit.
+[[gnu::noinline]] void rasterize_general_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id,
+                                              const TileRect& tile, int x_begin, int x_end, int y_begin, int y_end,
+                                              const SampleView& view, TileSamples& samples, RasterCounters& counters) {
     const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
     const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
     const EdgeStepper e[3] = {EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py),
@@ -117,13 +124,34 @@ void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32
     block.inv_area = t.inv_area;
     block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
     block.triangle_id = triangle_id;
-    const SampleView view{samples.depth.data(), samples.triangle.data(), samples.side};
     switch (isa) {
         case simd::Isa::sse4: return rasterize_msaa_block_sse4(block, view, counters);
         case simd::Isa::avx2: return rasterize_msaa_block_avx2(block, view, counters);
         case simd::Isa::avx512: return rasterize_msaa_block_avx512(block, view, counters);
         case simd::Isa::scalar: break;
     }
+}
+
+}  // namespace
+
+void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters) {
+    if (isa == simd::Isa::scalar) return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
+    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
+    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
+    if (x_begin >= x_end || y_begin >= y_end) return;
+    const SampleView view{samples.depth.data(), samples.triangle.data(), samples.side};
+    // Tiny triangles (most of a finely tessellated mesh) set up in the kernel, in int32.
+    if (tiny(t)) {
+        const TinyBox box{x_begin, x_end, y_begin, y_end, tile.x0, tile.y0};
+        switch (isa) {
+            case simd::Isa::sse4: return rasterize_msaa_tiny_sse4(t, triangle_id, box, view, counters);
+            case simd::Isa::avx2: return rasterize_msaa_tiny_avx2(t, triangle_id, box, view, counters);
+            case simd::Isa::avx512: return rasterize_msaa_tiny_avx512(t, triangle_id, box, view, counters);
+            case simd::Isa::scalar: break;
+        }
+    }
+    rasterize_general_msaa(isa, t, triangle_id, tile, x_begin, x_end, y_begin, y_end, view, samples, counters);
 }
 
 }  // namespace tessera::raster

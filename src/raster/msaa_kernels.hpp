@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "raster/raster_kernels.hpp"
 #include "raster/tile_rasterizer.hpp"
 
 namespace tessera::raster {
@@ -37,8 +38,13 @@ struct SampleView {
     int side;                   // pixels per tile row
 };
 
+// rasterize_msaa_block: one MsaaBlock32, a row of pixels at a time.
+// rasterize_msaa_tiny: the box of a tiny triangle (corners within kTinySpan of
+// each other, raster_kernels.hpp), its edges set up in int32 from the record.
 #define TESSERA_DECLARE_MSAA_KERNEL(suffix) \
-    void rasterize_msaa_block_##suffix(const MsaaBlock32& block, const SampleView& tile, RasterCounters& counters);
+    void rasterize_msaa_block_##suffix(const MsaaBlock32& block, const SampleView& tile, RasterCounters& counters); \
+    void rasterize_msaa_tiny_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box, \
+                                      const SampleView& tile, RasterCounters& counters);
 TESSERA_DECLARE_MSAA_KERNEL(sse4)
 TESSERA_DECLARE_MSAA_KERNEL(avx2)
 TESSERA_DECLARE_MSAA_KERNEL(avx512)

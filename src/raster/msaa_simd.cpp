@@ -8,6 +8,7 @@
 
 #include "raster/msaa_kernels.hpp"
 #include "raster/msaa_pattern.hpp"
+#include "raster/raster_limits.hpp"
 
 namespace tessera::raster {
 namespace {
@@ -47,34 +48,35 @@ constexpr LaneOffsets kLane;
 #endif
 }
 
-}  // namespace
+// A triangle's edges over the lanes of a row's first vector, biased by the
+// top-left rule (a sample is inside where all three are >= 0), and how they
+// change one vector right and one row down.
+struct LaneEdges {
+    Int row[3], right[3], down[3];
+    std::int32_t bias1, bias2;  // removed again for the barycentric numerators
+};
 
-void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const SampleView& tile, RasterCounters& counters) {
-    // E is affine: E at a lane's sample = E at the block's first pixel centre
-    // + (step_x / 256) · offset x + (step_y / 256) · offset y, exact in int32
-    // (the steps are multiples of 256), as the scalar loop's offset[k][s]
-    // plus its whole-pixel steps.
-    const Int offset_x = Int::load_aligned(kLane.x), offset_y = Int::load_aligned(kLane.y);
+// The tile-relative block [x_begin, x_end) × [y_begin, y_end), a row at a
+// time, kPixels pixels per vector. The last vector of a row may reach up to 3
+// pixels past its end (into the next row or TileSamples' padding): those lanes
+// write back what they read.
+[[gnu::always_inline]] inline void rasterize_rows(LaneEdges edges, int x_begin, int x_end, int y_begin, int y_end,
+                                                  float inv_area_value, float d0_value, float d10_value,
+                                                  float d20_value, std::uint32_t triangle_id, const SampleView& tile,
+                                                  RasterCounters& counters) {
     const Int lane_pixel = Int::load_aligned(kLane.pixel);
-    Int lane_edge[3], vector_step[3];
-    for (int k = 0; k < 3; ++k) {
-        lane_edge[k] = offset_x * Int(b.step_x[k] / 256) + offset_y * Int(b.step_y[k] / 256);
-        vector_step[k] = Int(kPixels * b.step_x[k]);
-    }
-    const Int bias1(b.bias[1]), bias2(b.bias[2]), none(0), id(std::int32_t(b.triangle_id));
-    const Float inv_area(b.inv_area), d0(b.d0), d10(b.d10), d20(b.d20), zero(0.0f);
+    const Int bias1(edges.bias1), bias2(edges.bias2), none(0), id = Int(std::int32_t(triangle_id));
+    const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
     unsigned fragments = 0, passed = 0;
-    std::int32_t row0 = b.row[0], row1 = b.row[1], row2 = b.row[2];
-    for (int y = b.y_begin; y < b.y_end; ++y) {
-        Int e0 = Int(row0) + lane_edge[0], e1 = Int(row1) + lane_edge[1], e2 = Int(row2) + lane_edge[2];
-        const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + b.x_begin);
+    for (int y = y_begin; y < y_end; ++y) {
+        Int e0 = edges.row[0], e1 = edges.row[1], e2 = edges.row[2];
+        const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + x_begin);
         std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
         std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
-        for (int x = b.x_begin; x < b.x_end;
-             x += kPixels, depth += Int::size, triangle += Int::size) {
-            const IntMask inside = ((e0 | e1 | e2) >= none) & (lane_pixel < Int(b.x_end - x));
+        for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
+            const IntMask inside = ((e0 | e1 | e2) >= none) & (lane_pixel < Int(x_end - x));
             const Int w1 = e1, w2 = e2;
-            e0 += vector_step[0], e1 += vector_step[1], e2 += vector_step[2];
+            e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
             const unsigned inside_bits = lane_bits(inside);
             if (inside_bits == 0) continue;
             fragments += unsigned(std::popcount(inside_bits));
@@ -92,10 +94,55 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const Sample
             xsimd::select(pass, new_depth, old_depth).store_unaligned(depth);
             xsimd::select(pass, id, Int::load_unaligned(triangle)).store_unaligned(triangle);
         }
-        row0 += b.step_y[0], row1 += b.step_y[1], row2 += b.step_y[2];
+        for (int k = 0; k < 3; ++k) edges.row[k] += edges.down[k];
     }
     counters.fragments += fragments;
     counters.depth_passed += passed;
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const SampleView& tile, RasterCounters& counters) {
+    // E is affine: E at a lane's sample = E at the block's first pixel centre
+    // + (step_x / 256) · offset x + (step_y / 256) · offset y, exact in int32
+    // (the steps are multiples of 256), as the scalar loop's offset[k][s]
+    // plus its whole-pixel steps.
+    static_assert(kSubpixelScale == 256);
+    const Int offset_x = Int::load_aligned(kLane.x), offset_y = Int::load_aligned(kLane.y);
+    LaneEdges edges;
+    for (int k = 0; k < 3; ++k) {
+        edges.row[k] = Int(b.row[k]) + offset_x * Int(b.step_x[k] / 256) + offset_y * Int(b.step_y[k] / 256);
+        edges.right[k] = Int(kPixels * b.step_x[k]);
+        edges.down[k] = Int(b.step_y[k]);
+    }
+    edges.bias1 = b.bias[1], edges.bias2 = b.bias[2];
+    rasterize_rows(edges, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20, b.triangle_id, tile,
+                   counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                                             const SampleView& tile, RasterCounters& counters) {
+    // The lanes' sample positions in the box's first vector, fixed point.
+    const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kLane.x);
+    const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kLane.y);
+    LaneEdges edges;
+    // Edge k from corner a to corner b: E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
+    // edge_function(), plus EdgeStepper's top-left bias; exact in int32, every value
+    // being below 2^26.
+    constexpr int kCorners[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    std::int32_t bias[3];
+    for (int k = 0; k < 3; ++k) {
+        const int a = kCorners[k][0], b = kCorners[k][1];
+        const std::int32_t dx = t.x[b] - t.x[a], dy = t.y[b] - t.y[a];
+        bias[k] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+        edges.row[k] = Int(dx) * (y - Int(t.y[a])) - Int(dy) * (x - Int(t.x[a])) + Int(bias[k]);
+        edges.right[k] = Int(-dy * (kPixels * 256));
+        edges.down[k] = Int(dx * 256);
+    }
+    edges.bias1 = bias[1], edges.bias2 = bias[2];
+    rasterize_rows(edges, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
+                   box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0], t.depth[2] - t.depth[0],
+                   triangle_id, tile, counters);
 }
 
 }  // namespace tessera::raster
