@@ -1,7 +1,10 @@
 #include "raster/msaa.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
+
+#include <emmintrin.h>
 
 #include "raster/msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
@@ -20,6 +23,76 @@ void TileFragments::reserve(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
     x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n);
     count = 0;
+}
+
+namespace {
+
+// What list_fragments() does with a pixel, by which samples are covered (bits
+// 0-3) and which pairs of samples have the same triangle id (bits 4-9: 01, 02,
+// 03, 12, 13, 23), worked out once by the reference loop's rule: a covered
+// sample takes the fragment of the first earlier covered sample with its
+// triangle, else a new one.
+struct PixelPattern {
+    std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
+    std::uint32_t first_samples;          // bit s: sample s starts a fragment
+};
+struct PixelPatterns {
+    PixelPattern pattern[1 << 10];
+    constexpr PixelPatterns() : pattern{} {
+        constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+        for (int key = 0; key < (1 << 10); ++key) {
+            PixelPattern& p = pattern[key];
+            p.first_samples = 0;
+            int fragments = 0;
+            for (int s = 0; s < kMsaaSamples; ++s) {
+                p.fragment[s] = -1;
+                if (!((key >> s) & 1)) continue;
+                for (int t = 0; t < s && p.fragment[s] < 0; ++t)
+                    if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
+                if (p.fragment[s] < 0) p.fragment[s] = fragments++, p.first_samples |= 1u << s;
+            }
+        }
+    }
+};
+constexpr PixelPatterns kPixelPatterns;
+
+}  // namespace
+
+void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out) {
+    static_assert(kMsaaSamples == 4, "a pixel's samples are one SSE vector");
+    const __m128 one = _mm_set1_ps(1.0f);
+    std::size_t count = 0;
+    for (int y = 0; y < rect.height(); ++y) {
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * samples.side + x);
+            __m128i* fragment = reinterpret_cast<__m128i*>(&samples.fragment[first]);
+            const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), one);
+            const int covered_bits = _mm_movemask_ps(covered);
+            if (covered_bits == 0) {  // background (no triangle ids to read)
+                _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
+                continue;
+            }
+            const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
+            // Pairs 01 02 03 12, then 13 23.
+            const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
+            const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
+            const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
+            const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
+            const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
+                             (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
+            const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
+            // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
+            const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
+            _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
+            for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
+                const int s = std::countr_zero(firsts);
+                out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
+                out.triangle[count] = samples.triangle[first + s];
+                ++count;
+            }
+        }
+    }
+    out.count = count;
 }
 
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {

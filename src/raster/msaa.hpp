@@ -65,10 +65,29 @@ inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::in
 // Whether a fixed-point point is inside a set-up triangle, by the top-left rule.
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 
+// The first half of collect_fragments(): sets samples.fragment and lists the
+// fragments' pixels and triangles (x, y, triangle, count), a pixel at a time
+// with SSE2 and a table, without the branches of the loop below.
+void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
+
 // Lists the fragments of a width × height tile from its samples and sets
 // samples.fragment. triangle_of(id) gives the RasterTriangle of a triangle id.
 template <class TriangleOf>
 void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
+    list_fragments(rect, samples, out);
+    // Each shaded at its pixel's centre.
+    for (std::size_t k = 0; k < out.count; ++k) {
+        const auto [l1, l2] =
+            screen_barycentrics(triangle_of(out.triangle[k]),
+                                std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
+                                std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
+        out.lambda1[k] = l1, out.lambda2[k] = l2;
+    }
+}
+
+// The plain loop collect_fragments() must match (tests compare them).
+template <class TriangleOf>
+void collect_fragments_reference(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
     out.count = 0;
     for (int y = 0; y < rect.height(); ++y) {
         for (int x = 0; x < rect.width(); ++x) {

@@ -188,3 +188,77 @@ TEST_CASE("4x MSAA: huge triangles next to small ones match the scalar loop in e
     const MsaaResult reference = check_msaa_isas_match_scalar(triangles, tile, kSide);
     CHECK(covered_samples(reference, tile, kSide) == raster::kMsaaSamples * kSide * kSide);
 }
+
+namespace {
+
+// collect_fragments and the plain loop it replaces on the same samples:
+// samples.fragment, the fragments' pixels, triangles and barycentrics (bits).
+void check_collect_matches_reference(const raster::TileRect& rect, raster::TileSamples& samples,
+                                     const std::vector<raster::RasterTriangle>& triangles) {
+    const int side = samples.side;
+    auto triangle_of = [&](std::uint32_t id) -> const raster::RasterTriangle& { return triangles[id]; };
+    raster::TileFragments expected, actual;
+    expected.reserve(side), actual.reserve(side);
+    raster::collect_fragments_reference(rect, samples, triangle_of, expected);
+    const std::vector<std::int32_t> expected_fragment = samples.fragment;
+    std::fill(samples.fragment.begin(), samples.fragment.end(), 12345);
+    raster::collect_fragments(rect, samples, triangle_of, actual);
+    REQUIRE(actual.count == expected.count);
+    int wrong = 0;
+    for (int y = 0; y < rect.height(); ++y)
+        for (int x = 0; x < rect.width(); ++x)
+            for (int s = 0; s < raster::kMsaaSamples; ++s) {
+                const std::size_t i = std::size_t(raster::kMsaaSamples) * (std::size_t(y) * side + x) + s;
+                wrong += samples.fragment[i] != expected_fragment[i];
+            }
+    for (std::size_t k = 0; k < expected.count; ++k)
+        wrong += actual.x[k] != expected.x[k] || actual.y[k] != expected.y[k] ||
+                 actual.triangle[k] != expected.triangle[k] ||
+                 std::memcmp(&actual.lambda1[k], &expected.lambda1[k], 4) != 0 ||
+                 std::memcmp(&actual.lambda2[k], &expected.lambda2[k], 4) != 0;
+    CHECK(wrong == 0);
+}
+
+}  // namespace
+
+// collect_fragments works a pixel at a time from a table of coverage and
+// id-equality patterns: every pattern (1-4 triangles among covered samples,
+// stale ids on uncovered ones) gives the reference loop's fragments, in
+// order, on random samples and on a rasterized mesh.
+TEST_CASE("4x MSAA: collect_fragments lists the reference loop's fragments for every sample pattern") {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<raster::RasterTriangle> triangles;
+    for (int i = 0; triangles.size() < 8; ++i) {
+        const glm::ivec2 o{(i % 4) * 2000, (i / 4) * 2000};
+        if (auto t = msaa_fixed_triangle({o + glm::ivec2{100, 50}, o + glm::ivec2{9000, 700}, o + glm::ivec2{3000, 8000}},
+                                         64, {0.5f, 0.6f, 0.7f}))
+            triangles.push_back(*t);
+    }
+    for (int side : {8, 32}) {
+        const raster::TileRect rect{side, 0, 2 * side - (side == 32 ? 5 : 0), side};
+        raster::TileSamples samples;
+        samples.reset(side);
+        std::uniform_int_distribution<std::uint32_t> few(0, 3), any(0, 7);
+        for (std::size_t i = 0; i < samples.depth.size(); ++i) {
+            samples.depth[i] = unit(rng) < 0.3f ? 1.0f : unit(rng) * 0.99f;
+            samples.triangle[i] = i % 3 ? few(rng) : any(rng);  // stale where depth is 1
+        }
+        check_collect_matches_reference(rect, samples, triangles);
+    }
+    // A rasterized mesh of tiny triangles: real edges between 2-4 triangles per pixel.
+    const raster::TileRect rect{32, 32, 64, 64};
+    std::vector<raster::RasterTriangle> mesh;
+    for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 40; ++i) {
+            const glm::ivec2 a{28 * 256 + i * 230, 28 * 256 + j * 230}, b = a + glm::ivec2{230, 0},
+                c = a + glm::ivec2{0, 230}, d = a + glm::ivec2{230, 230};
+            if (auto t = msaa_fixed_triangle({a, b, d}, 128, {0.5f, 0.5f, 0.5f})) mesh.push_back(*t);
+            if (auto t = msaa_fixed_triangle({a, d, c}, 128, {0.5f, 0.5f, 0.5f})) mesh.push_back(*t);
+        }
+    raster::TileSamples samples;
+    samples.reset(32);
+    raster::RasterCounters counters;
+    for (std::uint32_t i = 0; i < mesh.size(); ++i) raster::rasterize_triangle_msaa(mesh[i], i, rect, samples, counters);
+    check_collect_matches_reference(rect, samples, mesh);
+}
