@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <cstdlib>
 
 #include <emmintrin.h>
@@ -173,7 +174,26 @@ bool msaa_edge_fits_int32(const EdgeStepper& e, int width, int height) {
             near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
 }
 
-// Other triangles: edges set up in int64, narrowed to int32 where they fit.
+// The extremes of a biased edge over the samples of a width × height block:
+// it is affine, so they lie at the block's corner pixels, at their extreme
+// sample offsets.
+struct EdgeRange {
+    std::int64_t min, max;
+};
+EdgeRange sample_range(const EdgeStepper& e, int width, int height) {
+    const std::int64_t across = e.step_x * (width - 1), down = e.step_y * (height - 1);
+    std::int64_t offset_min = INT64_MAX, offset_max = INT64_MIN;
+    for (int s = 0; s < kMsaaSamples; ++s) {
+        const std::int64_t offset = (e.step_x / kSubpixelScale) * kSampleOffsetX[s] + (e.step_y / kSubpixelScale) * kSampleOffsetY[s];
+        offset_min = std::min(offset_min, offset), offset_max = std::max(offset_max, offset);
+    }
+    return {e.row + std::min<std::int64_t>(across, 0) + std::min<std::int64_t>(down, 0) + offset_min,
+            e.row + std::max<std::int64_t>(across, 0) + std::max<std::int64_t>(down, 0) + offset_max};
+}
+
+// Other triangles: edges set up in int64, narrowed to int32 where they fit;
+// where not, barycentric numerators in double and coverage in int32 for the
+// edges that cross the box; the scalar loop when even those leave int32.
 [[gnu::noinline]] void rasterize_general_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id,
                                               const TileRect& tile, int x_begin, int x_end, int y_begin, int y_end,
                                               const SampleView& view, TileSamples& samples, RasterCounters& counters) {
@@ -184,23 +204,44 @@ bool msaa_edge_fits_int32(const EdgeStepper& e, int width, int height) {
                               EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
     const int width = x_end - x_begin, height = y_end - y_begin;
     MsaaBlock32 block;
+    bool fits = true;
+    for (int k = 0; k < 3; ++k) fits = fits && msaa_edge_fits_int32(e[k], width, height);
+    MsaaWideWeights weights;
     for (int k = 0; k < 3; ++k) {
-        if (!msaa_edge_fits_int32(e[k], width, height))
-            return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
-        block.row[k] = std::int32_t(e[k].row);
-        block.step_x[k] = std::int32_t(e[k].step_x);
-        block.step_y[k] = std::int32_t(e[k].step_y);
         block.bias[k] = std::int32_t(e[k].bias);
+        if (fits) {
+            block.row[k] = std::int32_t(e[k].row);
+            block.step_x[k] = std::int32_t(e[k].step_x);
+            block.step_y[k] = std::int32_t(e[k].step_y);
+            continue;
+        }
+        // Edge values past int32 (large triangles): an edge >= 0 at every
+        // sample of the box passes everywhere, tested as 0; the others must fit.
+        const EdgeRange range = sample_range(e[k], width, height);
+        if (range.max < 0) return;  // no sample of the box is inside
+        const bool passes = range.min >= 0;
+        if (!passes && !msaa_edge_fits_int32(e[k], width, height))
+            return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
+        block.row[k] = passes ? 0 : std::int32_t(e[k].row);
+        block.step_x[k] = passes ? 0 : std::int32_t(e[k].step_x);
+        block.step_y[k] = passes ? 0 : std::int32_t(e[k].step_y);
     }
+    if (!fits)
+        for (int k = 0; k < 2; ++k) {
+            const EdgeStepper& weight = e[k + 1];
+            weights.row[k] = double(weight.row - weight.bias);
+            weights.step_x[k] = double(weight.step_x);
+            weights.step_y[k] = double(weight.step_y);
+        }
     block.x_begin = x_begin - tile.x0, block.x_end = x_end - tile.x0;
     block.y_begin = y_begin - tile.y0, block.y_end = y_end - tile.y0;
     block.inv_area = t.inv_area;
     block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
     block.triangle_id = triangle_id;
     switch (isa) {
-        case simd::Isa::sse4: return rasterize_msaa_block_sse4(block, view, counters);
-        case simd::Isa::avx2: return rasterize_msaa_block_avx2(block, view, counters);
-        case simd::Isa::avx512: return rasterize_msaa_block_avx512(block, view, counters);
+        case simd::Isa::sse4: return rasterize_msaa_block_sse4(block, fits ? nullptr : &weights, view, counters);
+        case simd::Isa::avx2: return rasterize_msaa_block_avx2(block, fits ? nullptr : &weights, view, counters);
+        case simd::Isa::avx512: return rasterize_msaa_block_avx512(block, fits ? nullptr : &weights, view, counters);
         case simd::Isa::scalar: break;
     }
 }

@@ -32,17 +32,30 @@ struct MsaaBlock32 {
     std::uint32_t triangle_id;
 };
 
+// Barycentric numerators of a block where they leave int32, given to the
+// kernel instead of taking them from MsaaBlock32::row[1], row[2]; row/step
+// then only test coverage, edges known to be >= 0 over the block given as 0.
+// double holds every edge value exactly (|E| < 2^49 < 2^53), so
+// float(double(E)) rounds once, like the scalar loop's float(int64 E).
+struct MsaaWideWeights {
+    double row[2];     // unbiased E1, E2 at the block's first pixel centre
+    double step_x[2];  // per pixel right (multiples of 256)
+    double step_y[2];  // per pixel down
+};
+
 struct SampleView {
     float* depth;               // TileSamples::depth
     std::uint32_t* triangle;    // TileSamples::triangle
     int side;                   // pixels per tile row
 };
 
-// rasterize_msaa_block: one MsaaBlock32, a row of pixels at a time.
+// rasterize_msaa_block: one MsaaBlock32, a row of pixels at a time; weights
+// null, or the barycentric numerators in double.
 // rasterize_msaa_tiny: the box of a tiny triangle (corners within kTinySpan of
 // each other, raster_kernels.hpp), its edges set up in int32 from the record.
 #define TESSERA_DECLARE_MSAA_KERNEL(suffix) \
-    void rasterize_msaa_block_##suffix(const MsaaBlock32& block, const SampleView& tile, RasterCounters& counters); \
+    void rasterize_msaa_block_##suffix(const MsaaBlock32& block, const MsaaWideWeights* weights, \
+                                       const SampleView& tile, RasterCounters& counters); \
     void rasterize_msaa_tiny_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box, \
                                       const SampleView& tile, RasterCounters& counters);
 TESSERA_DECLARE_MSAA_KERNEL(sse4)

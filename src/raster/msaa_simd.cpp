@@ -17,6 +17,8 @@ using Arch = TESSERA_SIMD_ARCH;
 using Int = xsimd::batch<std::int32_t, Arch>;
 using Float = xsimd::batch<float, Arch>;
 using IntMask = xsimd::batch_bool<std::int32_t, Arch>;
+using Double = xsimd::batch<double, Arch>;
+static_assert(Double::size * 2 == Float::size);
 
 constexpr int kPixels = int(Int::size) / kMsaaSamples;  // pixels per vector
 static_assert(kPixels * kMsaaSamples == int(Int::size));
@@ -26,11 +28,13 @@ static_assert(kMsaaKernelOverreach >= (kPixels - 1) * kMsaaSamples);
 // pixel's centre in 1/256 pixel, x (pixel · 256 + sample offset) and y.
 struct LaneOffsets {
     alignas(64) std::int32_t x[16], y[16], pixel[16];
-    constexpr LaneOffsets() : x{}, y{}, pixel{} {
+    alignas(64) double x_double[16], y_double[16];
+    constexpr LaneOffsets() : x{}, y{}, pixel{}, x_double{}, y_double{} {
         for (int i = 0; i < 16; ++i) {
             x[i] = 256 * (i / kMsaaSamples) + kSampleOffsetX[i % kMsaaSamples];
             y[i] = kSampleOffsetY[i % kMsaaSamples];
             pixel[i] = i / kMsaaSamples;
+            x_double[i] = x[i], y_double[i] = y[i];
         }
     }
 };
@@ -48,6 +52,28 @@ constexpr LaneOffsets kLane;
 #endif
 }
 
+// Two vectors of doubles (lanes 0..n/2-1, n/2..n-1) rounded to one of floats.
+// Hand-written: xsimd 8.1 has no conversion between batches of different lane
+// counts.
+[[gnu::always_inline]] inline Float round_to_float(const Double& lo, const Double& hi) {
+#if XSIMD_WITH_AVX512F
+    const __m512d low = _mm512_castpd256_pd512(_mm256_castps_pd(_mm512_cvtpd_ps(lo)));
+    return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm512_cvtpd_ps(hi)), 1));
+#elif XSIMD_WITH_AVX
+    return _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
+#else
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+#endif
+}
+
+// The barycentric numerators E1, E2 in double where they leave int32
+// (MsaaWideWeights): per lane the row's value plus the lane's offset, exact
+// integers, so float(E) rounds once as the scalar loop's float(int64) does.
+struct WideLanes {
+    Double offset_lo[2], offset_hi[2];  // the lanes' offsets from the vector's first pixel centre
+    double row[2], right[2], down[2];   // at the row's first vector; per vector right; per row down
+};
+
 // A triangle's edges over the lanes of a row's first vector, biased by the
 // top-left rule (a sample is inside where all three are >= 0), and how they
 // change one vector right and one row down.
@@ -60,7 +86,8 @@ struct LaneEdges {
 // time, kPixels pixels per vector. The last vector of a row may reach up to 3
 // pixels past its end (into the next row or TileSamples' padding): those lanes
 // write back what they read.
-[[gnu::always_inline]] inline void rasterize_rows(LaneEdges edges, int x_begin, int x_end, int y_begin, int y_end,
+template <bool kWide>
+[[gnu::always_inline]] inline void rasterize_rows(LaneEdges edges, WideLanes wide, int x_begin, int x_end, int y_begin, int y_end,
                                                   float inv_area_value, float d0_value, float d10_value,
                                                   float d20_value, std::uint32_t triangle_id, const SampleView& tile,
                                                   RasterCounters& counters) {
@@ -70,20 +97,29 @@ struct LaneEdges {
     unsigned fragments = 0, passed = 0;
     for (int y = y_begin; y < y_end; ++y) {
         Int e0 = edges.row[0], e1 = edges.row[1], e2 = edges.row[2];
+        double weight1 = wide.row[0], weight2 = wide.row[1];
         const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + x_begin);
         std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
         std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
         for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
             const IntMask inside = ((e0 | e1 | e2) >= none) & (lane_pixel < Int(x_end - x));
             const Int w1 = e1, w2 = e2;
+            const double v1 = weight1, v2 = weight2;
             e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
+            if constexpr (kWide) weight1 += wide.right[0], weight2 += wide.right[1];
             const unsigned inside_bits = lane_bits(inside);
             if (inside_bits == 0) continue;
             fragments += unsigned(std::popcount(inside_bits));
             // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
             // (max(z, 0) gives 0 for -0 too, as the scalar z0 > 0 ? z0 : 0 does).
-            const Float lambda1 = xsimd::to_float(w1 - bias1) * inv_area;
-            const Float lambda2 = xsimd::to_float(w2 - bias2) * inv_area;
+            Float lambda1, lambda2;
+            if constexpr (kWide) {
+                lambda1 = round_to_float(Double(v1) + wide.offset_lo[0], Double(v1) + wide.offset_hi[0]) * inv_area;
+                lambda2 = round_to_float(Double(v2) + wide.offset_lo[1], Double(v2) + wide.offset_hi[1]) * inv_area;
+            } else {
+                lambda1 = xsimd::to_float(w1 - bias1) * inv_area;
+                lambda2 = xsimd::to_float(w2 - bias2) * inv_area;
+            }
             const Int new_depth = xsimd::bitwise_cast<Int>(xsimd::max(d0 + lambda1 * d10 + lambda2 * d20, zero));
             // Depths in [0, 1] order like their bit patterns: LESS as an integer compare.
             const Int old_depth = Int::load_unaligned(depth);
@@ -95,6 +131,7 @@ struct LaneEdges {
             xsimd::select(pass, id, Int::load_unaligned(triangle)).store_unaligned(triangle);
         }
         for (int k = 0; k < 3; ++k) edges.row[k] += edges.down[k];
+        if constexpr (kWide) wide.row[0] += wide.down[0], wide.row[1] += wide.down[1];
     }
     counters.fragments += fragments;
     counters.depth_passed += passed;
@@ -102,7 +139,8 @@ struct LaneEdges {
 
 }  // namespace
 
-void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const SampleView& tile, RasterCounters& counters) {
+void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const MsaaWideWeights* weights,
+                                              const SampleView& tile, RasterCounters& counters) {
     // E is affine: E at a lane's sample = E at the block's first pixel centre
     // + (step_x / 256) · offset x + (step_y / 256) · offset y, exact in int32
     // (the steps are multiples of 256), as the scalar loop's offset[k][s]
@@ -116,8 +154,23 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const Sample
         edges.down[k] = Int(b.step_y[k]);
     }
     edges.bias1 = b.bias[1], edges.bias2 = b.bias[2];
-    rasterize_rows(edges, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20, b.triangle_id, tile,
-                   counters);
+    WideLanes wide{};
+    if (!weights)
+        return rasterize_rows<false>(edges, wide, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10,
+                                     b.d20, b.triangle_id, tile, counters);
+    const Double x_lo = Double::load_aligned(kLane.x_double), x_hi = Double::load_aligned(kLane.x_double + Double::size);
+    const Double y_lo = Double::load_aligned(kLane.y_double), y_hi = Double::load_aligned(kLane.y_double + Double::size);
+    for (int k = 0; k < 2; ++k) {
+        // (step / 256) · offset, as in the int32 case: exact in double.
+        const Double per_x(weights->step_x[k] / 256), per_y(weights->step_y[k] / 256);
+        wide.offset_lo[k] = x_lo * per_x + y_lo * per_y;
+        wide.offset_hi[k] = x_hi * per_x + y_hi * per_y;
+        wide.row[k] = weights->row[k];
+        wide.right[k] = kPixels * weights->step_x[k];
+        wide.down[k] = weights->step_y[k];
+    }
+    rasterize_rows<true>(edges, wide, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20,
+                         b.triangle_id, tile, counters);
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
@@ -140,7 +193,7 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint3
         edges.down[k] = Int(dx * 256);
     }
     edges.bias1 = bias[1], edges.bias2 = bias[2];
-    rasterize_rows(edges, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
+    rasterize_rows<false>(edges, WideLanes{}, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
                    box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0], t.depth[2] - t.depth[0],
                    triangle_id, tile, counters);
 }
