@@ -92,7 +92,8 @@ template <bool kWide>
                                                   float d20_value, std::uint32_t triangle_id, const SampleView& tile,
                                                   RasterCounters& counters) {
     const Int lane_pixel = Int::load_aligned(kLane.pixel);
-    const Int bias1(edges.bias1), bias2(edges.bias2), none(0), id = Int(std::int32_t(triangle_id));
+    // E >= 0 as E > -1: one compare (AVX2 has no >= for integers).
+    const Int bias1(edges.bias1), bias2(edges.bias2), minus_one(-1), id = Int(std::int32_t(triangle_id));
     const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
     unsigned fragments = 0, passed = 0;
     for (int y = y_begin; y < y_end; ++y) {
@@ -102,7 +103,7 @@ template <bool kWide>
         std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
         std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
         for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
-            const IntMask inside = ((e0 | e1 | e2) >= none) & (lane_pixel < Int(x_end - x));
+            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (lane_pixel < Int(x_end - x));
             const Int w1 = e1, w2 = e2;
             const double v1 = weight1, v2 = weight2;
             e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
