@@ -362,7 +362,7 @@ void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t tr
         const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
         const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
         if (x_begin >= x_end || y_begin >= y_end) return;
-        if (x_end - x_begin <= kStampWidth && tiny(t))
+        if (x_end - x_begin <= kMaxTinyWidth && tiny(t))
             return rasterize_tiny(isa, t, triangle_id, {x_begin, x_end, y_begin, y_end, tile.x0, tile.y0}, buffers,
                                   counters);
     }
