@@ -62,31 +62,33 @@ inline constexpr int kStampWidth = 4;
 inline constexpr std::int32_t kTinySpan = 16 * 256;
 inline constexpr int kMaxTinyWidth = 16;
 
-// The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
-struct TinyBox {
-    int x_begin, x_end, y_begin, y_end;
-    int tile_x0, tile_y0;
-};
-
 // rasterize_block: one EdgeBlock32 a row of pixels at a time (vectors along the row).
 // rasterize_stamp: a block at most kStampWidth pixels wide (any height), every
 // edge value in int32 (down to a stamp's height below the block), as 4-wide
 // stamps of rows: 1 row per SSE vector, 2 per AVX2, 4 per AVX-512 (a 4×4 box
 // in one operation). Not fully_covered, no wide weights.
-// rasterize_tiny: a tiny triangle's box, edge setup included, as stamps of the
-// narrowest width of 4, 8 and 16 pixels the box fits in: 4 wide as above;
-// 8 wide 1 row per AVX2 vector, 2 per AVX-512 and 2 SSE vectors across;
-// 16 wide one row in 1 AVX-512, 2 AVX2 or 4 SSE vectors.
+// rasterize_triangle: a whole triangle into the tile (the same result as
+// rasterize_triangle() of tile_rasterizer.hpp; `view` is `buffers`' arrays).
+// A tiny triangle's box up to kMaxTinyWidth wide is set up in int32 in the
+// kernel, and rasterized as stamps of the narrowest width of 4, 8 and 16
+// pixels it fits in: 4 wide as above; 8 wide 1 row per AVX2 vector, 2 per
+// AVX-512, 2 SSE vectors across; 16 wide one row in 1 AVX-512, 2 AVX2 or 4 SSE
+// vectors. Any other triangle goes to rasterize_general().
 #define TESSERA_DECLARE_RASTER_KERNEL(suffix) \
     void rasterize_block_##suffix(const EdgeBlock32& block, const WideWeights* wide, const TileView& tile, \
                                   RasterCounters& counters); \
     void rasterize_stamp_##suffix(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters); \
-    void rasterize_tiny_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box, \
-                                 const TileView& tile, RasterCounters& counters);
+    void rasterize_triangle_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, \
+                                     TileBuffers& buffers, const TileView& view, RasterCounters& counters);
 TESSERA_DECLARE_RASTER_KERNEL(sse4)
 TESSERA_DECLARE_RASTER_KERNEL(avx2)
 TESSERA_DECLARE_RASTER_KERNEL(avx512)
 #undef TESSERA_DECLARE_RASTER_KERNEL
+
+// Every triangle but tiny ones, with the ISA's block and stamp kernels
+// (tile_rasterizer.cpp); the kernels' rasterize_triangle hands them over.
+void rasterize_general(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                       TileBuffers& buffers, RasterCounters& counters);
 
 }  // namespace tessera::raster
 

@@ -305,6 +305,12 @@ template <int kWidth>
     edges.threshold[k] = xsimd::select(top_left, Int(-1), Int(0));
 }
 
+// The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
+struct TinyBox {
+    int x_begin, x_end, y_begin, y_end;
+    int tile_x0, tile_y0;
+};
+
 template <int kWidth>
 [[gnu::always_inline]] inline void rasterize_tiny(const RasterTriangle& t, std::uint32_t triangle_id,
                                                   const TinyBox& box, const TileView& tile, RasterCounters& counters) {
@@ -322,15 +328,34 @@ template <int kWidth>
                              t.depth[2] - t.depth[0], triangle_id, tile, counters);
 }
 
+// Whether every corner lies within kTinySpan of the others in x and in y.
+// Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare
+// (min and max of three branched, and mispredicted on random corner orders).
+[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
+    // Each test as 0 or 1, combined with & (not &&, which would branch).
+    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
+        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
+    };
+    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
+}
+
 }  // namespace
 
-void TESSERA_SIMD_ENTRY(rasterize_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
-                                        const TileView& tile, RasterCounters& counters) {
-    // The narrowest stamp the box fits in (it is at most kMaxTinyWidth wide).
-    const int width = box.x_end - box.x_begin;
-    if (width <= 4) return rasterize_tiny<4>(t, triangle_id, box, tile, counters);
-    if (width <= 8) return rasterize_tiny<8>(t, triangle_id, box, tile, counters);
-    rasterize_tiny<16>(t, triangle_id, box, tile, counters);
+void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                                            TileBuffers& buffers, const TileView& view, RasterCounters& counters) {
+    const int x_begin = t.px_min > tile.x0 ? t.px_min : tile.x0, x_end = t.px_max < tile.x1 ? t.px_max + 1 : tile.x1;
+    const int y_begin = t.py_min > tile.y0 ? t.py_min : tile.y0, y_end = t.py_max < tile.y1 ? t.py_max + 1 : tile.y1;
+    if (x_begin >= x_end || y_begin >= y_end) return;
+    const int width = x_end - x_begin;
+    if (width <= kMaxTinyWidth && tiny(t)) {
+        // The narrowest stamp the box fits in.
+        const TinyBox box{x_begin, x_end, y_begin, y_end, tile.x0, tile.y0};
+        if (width <= 4) return rasterize_tiny<4>(t, triangle_id, box, view, counters);
+        if (width <= 8) return rasterize_tiny<8>(t, triangle_id, box, view, counters);
+        return rasterize_tiny<16>(t, triangle_id, box, view, counters);
+    }
+    rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, triangle_id, tile, buffers, counters);
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_stamp)(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters) {
