@@ -2,6 +2,7 @@
 // compiled once per ISA. Same arithmetic as the scalar loop in
 // tile_rasterizer.cpp, lane by lane, so both give bit-identical buffers.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
@@ -328,16 +329,29 @@ template <int kWidth>
                              t.depth[2] - t.depth[0], triangle_id, tile, counters);
 }
 
-// Whether every corner lies within kTinySpan of the others in x and in y.
-// Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare
-// (min and max of three branched, and mispredicted on random corner orders).
+// Whether every corner lies within kTinySpan of the others in x and in y:
+// |a - b| < kTinySpan for the three pairs of x and of y, six lanes of one
+// vector (|a - b| < 2^24: no overflow). Hand-written: xsimd 8.1 has no lane
+// permutation, and the scalar tests kept x and y in registers the edge setup
+// then lacked (spilled to the stack).
 [[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
-    // Each test as 0 or 1, combined with & (not &&, which would branch).
-    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
-        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
-    };
-    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
-            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
+    static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) == 12);
+#if XSIMD_WITH_AVX2
+    // x0 x1 x2 y0 y1 y2 and two lanes of the pixel box, against x1 x2 x0 y1 y2 y0 (box lanes against themselves).
+    const __m256i corners = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&t));
+    const __m256i next = _mm256_permutevar8x32_epi32(corners, _mm256_setr_epi32(1, 2, 0, 4, 5, 3, 6, 7));
+    const __m256i span = _mm256_abs_epi32(_mm256_sub_epi32(corners, next));
+    return _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(kTinySpan), span))) == 0xff;
+#else
+    // x0 x1 x2 y0 against x1 x2 x0 y0, and y0 y1 y2 (box) against y1 y2 y0 (box).
+    const __m128i xs = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&t.x[0]));
+    const __m128i ys = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&t.y[0]));
+    const __m128i span_x = _mm_abs_epi32(_mm_sub_epi32(xs, _mm_shuffle_epi32(xs, _MM_SHUFFLE(3, 0, 2, 1))));
+    const __m128i span_y = _mm_abs_epi32(_mm_sub_epi32(ys, _mm_shuffle_epi32(ys, _MM_SHUFFLE(3, 0, 2, 1))));
+    const __m128i limit = _mm_set1_epi32(kTinySpan);
+    const __m128i near = _mm_and_si128(_mm_cmpgt_epi32(limit, span_x), _mm_cmpgt_epi32(limit, span_y));
+    return _mm_movemask_ps(_mm_castsi128_ps(near)) == 0xf;
+#endif
 }
 
 }  // namespace
