@@ -62,6 +62,12 @@ inline constexpr int kStampWidth = 4;
 inline constexpr std::int32_t kTinySpan = 16 * 256;
 inline constexpr int kMaxTinyWidth = 16;
 
+// The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
+struct TinyBox {
+    int x_begin, x_end, y_begin, y_end;
+    int tile_x0, tile_y0;
+};
+
 // rasterize_block: one EdgeBlock32 a row of pixels at a time (vectors along the row).
 // rasterize_stamp: a block at most kStampWidth pixels wide (any height), every
 // edge value in int32 (down to a stamp's height below the block), as 4-wide

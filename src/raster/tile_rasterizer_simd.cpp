@@ -306,12 +306,6 @@ template <int kWidth>
     edges.threshold[k] = xsimd::select(top_left, Int(-1), Int(0));
 }
 
-// The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
-struct TinyBox {
-    int x_begin, x_end, y_begin, y_end;
-    int tile_x0, tile_y0;
-};
-
 template <int kWidth>
 [[gnu::always_inline]] inline void rasterize_tiny(const RasterTriangle& t, std::uint32_t triangle_id,
                                                   const TinyBox& box, const TileView& tile, RasterCounters& counters) {
