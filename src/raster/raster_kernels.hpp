@@ -54,10 +54,13 @@ struct TileView {
 inline constexpr int kStampWidth = 4;
 
 // A tiny triangle: every corner within kTinySpan of the others in x and in y
-// (16 px). Its edge values at the pixel centres of its box are below 2^26, so
-// the kernel sets it up in int32 by itself, from the record, with no int64
-// edge steppers: what most triangles of a finely tessellated mesh need.
+// (16 px). Its edge values at the pixel centres the kernel's lanes reach (up
+// to 16 px right of the box's first column, 8 rows below it) are below 2^26,
+// so the kernel sets it up in int32 by itself, from the record, with no int64
+// edge steppers: what most triangles of a finely tessellated mesh need. Its
+// box is at most kMaxTinyWidth wide.
 inline constexpr std::int32_t kTinySpan = 16 * 256;
+inline constexpr int kMaxTinyWidth = 16;
 
 // The part of a tile a tiny triangle's box covers, in image pixels, and the tile's origin.
 struct TinyBox {
@@ -70,18 +73,28 @@ struct TinyBox {
 // edge value in int32 (down to a stamp's height below the block), as 4-wide
 // stamps of rows: 1 row per SSE vector, 2 per AVX2, 4 per AVX-512 (a 4×4 box
 // in one operation). Not fully_covered, no wide weights.
-// rasterize_tiny: the same for a tiny triangle's box (at most kStampWidth wide),
-// edge setup included.
+// rasterize_triangle: a whole triangle into the tile (the same result as
+// rasterize_triangle() of tile_rasterizer.hpp; `view` is `buffers`' arrays).
+// A tiny triangle's box up to kMaxTinyWidth wide is set up in int32 in the
+// kernel, and rasterized as stamps of the narrowest width of 4, 8 and 16
+// pixels it fits in: 4 wide as above; 8 wide 1 row per AVX2 vector, 2 per
+// AVX-512, 2 SSE vectors across; 16 wide one row in 1 AVX-512, 2 AVX2 or 4 SSE
+// vectors. Any other triangle goes to rasterize_general().
 #define TESSERA_DECLARE_RASTER_KERNEL(suffix) \
     void rasterize_block_##suffix(const EdgeBlock32& block, const WideWeights* wide, const TileView& tile, \
                                   RasterCounters& counters); \
     void rasterize_stamp_##suffix(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters); \
-    void rasterize_tiny_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box, \
-                                 const TileView& tile, RasterCounters& counters);
+    void rasterize_triangle_##suffix(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile, \
+                                     TileBuffers& buffers, const TileView& view, RasterCounters& counters);
 TESSERA_DECLARE_RASTER_KERNEL(sse4)
 TESSERA_DECLARE_RASTER_KERNEL(avx2)
 TESSERA_DECLARE_RASTER_KERNEL(avx512)
 #undef TESSERA_DECLARE_RASTER_KERNEL
+
+// Every triangle but tiny ones, with the ISA's block and stamp kernels
+// (tile_rasterizer.cpp); the kernels' rasterize_triangle hands them over.
+void rasterize_general(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                       TileBuffers& buffers, RasterCounters& counters);
 
 }  // namespace tessera::raster
 

@@ -184,30 +184,6 @@ void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide
     }
 }
 
-// Whether every corner lies within kTinySpan of the others in x and in y.
-// Branch-free: |a - b| < kTinySpan for each pair, as one unsigned compare.
-[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
-    // Each test as 0 or 1, combined with & (not &&, which would branch).
-    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
-        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
-    };
-    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
-            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
-}
-
-[[gnu::always_inline]] inline
-void rasterize_tiny(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
-                    TileBuffers& buffers, RasterCounters& counters) {
-    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
-                        buffers.side};
-    switch (isa) {
-        case simd::Isa::sse4: return rasterize_tiny_sse4(t, triangle_id, box, view, counters);
-        case simd::Isa::avx2: return rasterize_tiny_avx2(t, triangle_id, box, view, counters);
-        case simd::Isa::avx512: return rasterize_tiny_avx512(t, triangle_id, box, view, counters);
-        case simd::Isa::scalar: break;
-    }
-}
-
 // The kernels' record of block p with its edge values narrowed to int32 (they fit: fits_int32 or
 // stamp_fits_int32).
 [[gnu::always_inline]] inline
@@ -325,8 +301,6 @@ void rasterize_run(simd::Isa isa, const RasterTriangle& t, const TriangleInTile&
 
 }  // namespace
 
-namespace {
-
 // Everything but tiny triangles: out of line, so that the tiny path, most
 // calls for a finely tessellated mesh, pays for no more than it uses.
 [[gnu::noinline]] void rasterize_general(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id,
@@ -352,19 +326,17 @@ namespace {
     rasterize_hierarchical(isa, t, *placed, triangle_id, tile, buffers, counters);
 }
 
-}  // namespace
-
 void rasterize_triangle(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                         TileBuffers& buffers, RasterCounters& counters) {
-    // Tiny triangles (most of a finely tessellated mesh) straight to the stamp
-    // kernel, which sets their edges up in int32 itself.
-    if (isa != simd::Isa::scalar) {
-        const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
-        const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
-        if (x_begin >= x_end || y_begin >= y_end) return;
-        if (x_end - x_begin <= kStampWidth && tiny(t))
-            return rasterize_tiny(isa, t, triangle_id, {x_begin, x_end, y_begin, y_end, tile.x0, tile.y0}, buffers,
-                                  counters);
+    // Straight to the ISA's kernel, which sets tiny triangles (most of a
+    // finely tessellated mesh) up in int32 itself and hands the others back.
+    const TileView view{buffers.depth.data(), buffers.triangle.data(), buffers.lambda1.data(), buffers.lambda2.data(),
+                        buffers.side};
+    switch (isa) {
+        case simd::Isa::sse4: return rasterize_triangle_sse4(t, triangle_id, tile, buffers, view, counters);
+        case simd::Isa::avx2: return rasterize_triangle_avx2(t, triangle_id, tile, buffers, view, counters);
+        case simd::Isa::avx512: return rasterize_triangle_avx512(t, triangle_id, tile, buffers, view, counters);
+        case simd::Isa::scalar: break;
     }
     rasterize_general(isa, t, triangle_id, tile, buffers, counters);
 }

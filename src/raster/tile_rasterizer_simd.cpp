@@ -2,6 +2,7 @@
 // compiled once per ISA. Same arithmetic as the scalar loop in
 // tile_rasterizer.cpp, lane by lane, so both give bit-identical buffers.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
@@ -111,9 +112,19 @@ void rasterize_block(const EdgeBlock32& b, const WideWeights* wide, const TileVi
 }
 
 
-// The stamp: lane i is pixel (i % 4, i / 4) of a 4-wide group of kStampRows rows.
-constexpr int kStampRows = int(Int::size) / kStampWidth;
-static_assert(kStampRows * kStampWidth == int(Int::size));
+// A stamp kWidth pixels wide (4, 8 or 16): lane i of a vector is pixel
+// (i % kWidth, i / kWidth) of kRows rows when kWidth is below the lane count,
+// else one row is kVectors vectors side by side. Boxes take the narrowest
+// stamp they fit in, so few lanes are wasted whatever the box's shape.
+template <int kWidth>
+struct Stamp {
+    static constexpr int kLanes = int(Int::size);
+    static constexpr int kColumns = kWidth < kLanes ? kWidth : kLanes;  // pixels of one row in a vector
+    static constexpr int kRows = kLanes / kColumns;                      // rows in a vector
+    static constexpr int kVectors = kWidth / kColumns;                   // vectors across a row
+    static_assert(kWidth == 4 || kWidth == 8 || kWidth == 16);
+    static_assert(kWidth <= kMaxRasterLanes, "a stamp's loads past a row's end stay in the tile buffers' padding");
+};
 
 // Which lanes of a comparison hold: bit i for lane i. Hand-written: xsimd 8.1
 // has no movemask.
@@ -127,99 +138,133 @@ static_assert(kStampRows * kStampWidth == int(Int::size));
 #endif
 }
 
-// 4 int32 from each of kStampRows rows (row r at base + offset[r]) into one
+// kColumns int32 from each of kRows rows (row r at base + offset[r]) into one
 // vector, and back. Hand-written: xsimd 8.1 loads and stores whole vectors only.
+template <int kColumns>
 [[gnu::always_inline]] inline Int load_rows(const std::int32_t* base, const std::size_t* offset) {
+    if constexpr (kColumns == int(Int::size)) {
+        return Int::load_unaligned(base + offset[0]);
+    } else {
 #if XSIMD_WITH_AVX512F
-    const __m512i low = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[0])));
-    const __m512i two = _mm512_inserti32x4(low, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[1])), 1);
-    const __m512i three = _mm512_inserti32x4(two, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[2])), 2);
-    return _mm512_inserti32x4(three, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[3])), 3);
+        if constexpr (kColumns == 8) {
+            const __m512i low = _mm512_castsi256_si512(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(base + offset[0])));
+            return _mm512_inserti64x4(low, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(base + offset[1])), 1);
+        } else {
+            static_assert(kColumns == 4);
+            const __m512i low = _mm512_castsi128_si512(_mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[0])));
+            const __m512i two = _mm512_inserti32x4(low, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[1])), 1);
+            const __m512i three = _mm512_inserti32x4(two, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[2])), 2);
+            return _mm512_inserti32x4(three, _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[3])), 3);
+        }
 #elif XSIMD_WITH_AVX2
-    return _mm256_loadu2_m128i(reinterpret_cast<const __m128i*>(base + offset[1]),
-                               reinterpret_cast<const __m128i*>(base + offset[0]));
+        static_assert(kColumns == 4);
+        return _mm256_loadu2_m128i(reinterpret_cast<const __m128i*>(base + offset[1]),
+                                   reinterpret_cast<const __m128i*>(base + offset[0]));
 #else
-    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + offset[0]));
+        static_assert(kColumns == int(Int::size), "SSE stamps are one row per vector");
 #endif
+    }
 }
 // Rows past the box share row 0's offset (their lanes write back what was
 // read), so rows are stored last to first: row 0's own values land last.
+template <int kColumns>
 [[gnu::always_inline]] inline void store_rows(std::int32_t* base, const std::size_t* offset, const Int& v) {
+    if constexpr (kColumns == int(Int::size)) {
+        v.store_unaligned(base + offset[0]);
+    } else {
 #if XSIMD_WITH_AVX512F
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[3]), _mm512_extracti32x4_epi32(v, 3));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[2]), _mm512_extracti32x4_epi32(v, 2));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm512_extracti32x4_epi32(v, 1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm512_castsi512_si128(v));
+        if constexpr (kColumns == 8) {
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(base + offset[1]), _mm512_extracti64x4_epi64(v, 1));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(base + offset[0]), _mm512_castsi512_si256(v));
+        } else {
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[3]), _mm512_extracti32x4_epi32(v, 3));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[2]), _mm512_extracti32x4_epi32(v, 2));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm512_extracti32x4_epi32(v, 1));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm512_castsi512_si128(v));
+        }
 #elif XSIMD_WITH_AVX2
-    // Not _mm256_storeu2_m128i: it stores the low half first.
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm256_extracti128_si256(v, 1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm256_castsi256_si128(v));
-#else
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), v);
+        // Not _mm256_storeu2_m128i: it stores the low half first.
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[1]), _mm256_extracti128_si256(v, 1));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(base + offset[0]), _mm256_castsi256_si128(v));
 #endif
+    }
 }
 // The load + select + store of one tile array where `pass` holds.
+template <int kColumns>
 [[gnu::always_inline]] inline void update_rows(std::int32_t* base, const std::size_t* offset,
                                                const xsimd::batch_bool<std::int32_t, Arch>& pass, const Int& v) {
-    store_rows(base, offset, xsimd::select(pass, v, load_rows(base, offset)));
+    store_rows<kColumns>(base, offset, xsimd::select(pass, v, load_rows<kColumns>(base, offset)));
 }
 
-// The lanes' pixel offsets from the stamp's first pixel centre, in fixed point.
-alignas(64) constexpr std::int32_t kStampDx[16] = {0, 256, 512, 768, 0, 256, 512, 768, 0, 256, 512, 768, 0, 256, 512, 768};
-alignas(64) constexpr std::int32_t kStampDy[16] = {0, 0, 0, 0, 256, 256, 256, 256, 512, 512, 512, 512, 768, 768, 768, 768};
+// The lanes' column and row within a vector of a kColumns-wide stamp.
+template <int kColumns>
+[[gnu::always_inline]] inline Int lane_column() {
+    return Int::load_aligned(kLaneIndex) & Int(kColumns - 1);
+}
+template <int kColumns>
+[[gnu::always_inline]] inline Int lane_row() {
+    return Int::load_aligned(kLaneIndex) >> std::countr_zero(unsigned(kColumns));
+}
 
 // A block's three edges over the lanes of its first stamp: the unbiased edge
-// values E (the barycentric numerators), their change from one stamp to the
-// next (kStampRows rows down), and the top-left rule as a threshold: a pixel
-// centre is inside edge k when E_k > threshold_k (-1 for top and left edges,
-// i.e. E >= 0; 0 for the others, E >= 1), as the scalar loop's E + bias >= 0.
+// values E (the barycentric numerators) in the stamp's first vector, their
+// change from one vector to the next across a row (`across`) and from one
+// stamp to the next (kRows rows down), and the top-left rule as a threshold:
+// a pixel centre is inside edge k when E_k > threshold_k (-1 for top and left
+// edges, i.e. E >= 0; 0 for the others, E >= 1), as the scalar loop's E + bias >= 0.
 struct StampEdges {
-    Int e[3], down[3], threshold[3];
+    Int e[3], across[3], down[3], threshold[3];
 };
 
-// A box at most kStampWidth wide (tile-relative pixels [x_begin, x_end) ×
-// [y_begin, y_end)), kStampRows rows per step, the same arithmetic per lane
-// as the scalar loop. A stamp's loads reach up to 3 pixels past the box's
-// right end (at most into the next row, or the tile buffers' padding), and
-// lanes outside the box write back what they read.
+// A box at most kWidth wide (tile-relative pixels [x_begin, x_end) ×
+// [y_begin, y_end)), a stamp of kRows rows per step, the same arithmetic per
+// lane as the scalar loop. A row's loads reach kWidth - 1 pixels right of the
+// box's first column: at most into the start of the next row, left of the
+// box's columns there as kWidth <= the tile's side, or into the tile
+// buffers' padding. Lanes outside the box write back what they read.
+template <int kWidth>
 [[gnu::always_inline]] inline void rasterize_stamps(StampEdges edges, int x_begin, int x_end, int y_begin, int y_end,
                                                     float inv_area_value, float d0_value, float d10_value,
                                                     float d20_value, std::uint32_t triangle_id, const TileView& tile,
                                                     RasterCounters& counters) {
-    const Int lane = Int::load_aligned(kLaneIndex);
-    const Int ox = lane & Int(kStampWidth - 1), oy = lane >> 2;
-    const auto in_row = ox < Int(x_end - x_begin);
+    using S = Stamp<kWidth>;
+    const Int ox = lane_column<S::kColumns>(), oy = lane_row<S::kColumns>();
     const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
+    const Int id = Int(std::int32_t(triangle_id));
     unsigned fragments = 0, passed = 0;
-    for (int y = y_begin; y < y_end; y += kStampRows) {
-        const auto inside = (edges.e[0] > edges.threshold[0]) & (edges.e[1] > edges.threshold[1]) &
-                            (edges.e[2] > edges.threshold[2]) & in_row & (oy < Int(y_end - y));
-        const unsigned inside_bits = lane_bits(inside);
-        if (inside_bits != 0) {
+    for (int y = y_begin; y < y_end; y += S::kRows) {
+        std::size_t offset[S::kRows];
+        for (int r = 0; r < S::kRows; ++r) offset[r] = std::size_t(y + r < y_end ? y + r : y) * tile.side + x_begin;
+        Int e[3] = {edges.e[0], edges.e[1], edges.e[2]};
+        for (int v = 0; v < S::kVectors; ++v) {
+            if (v > 0) {
+                for (int k = 0; k < 3; ++k) e[k] += edges.across[k];
+                for (int r = 0; r < S::kRows; ++r) offset[r] += S::kLanes;
+            }
+            auto inside = (e[0] > edges.threshold[0]) & (e[1] > edges.threshold[1]) & (e[2] > edges.threshold[2]) &
+                          (ox < Int(x_end - x_begin - v * S::kLanes));
+            if constexpr (S::kRows > 1) inside = inside & (oy < Int(y_end - y));
+            const unsigned inside_bits = lane_bits(inside);
+            if (inside_bits == 0) continue;
             // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
             // (max(z, 0) gives 0 for -0 too, as the scalar z > 0 ? z : 0 does).
-            const Float lambda1 = xsimd::to_float(edges.e[1]) * inv_area;
-            const Float lambda2 = xsimd::to_float(edges.e[2]) * inv_area;
+            const Float lambda1 = xsimd::to_float(e[1]) * inv_area;
+            const Float lambda2 = xsimd::to_float(e[2]) * inv_area;
             const Int new_depth = xsimd::bitwise_cast<Int>(xsimd::max(d0 + lambda1 * d10 + lambda2 * d20, zero));
-            std::size_t offset[kStampRows];
-            for (int r = 0; r < kStampRows; ++r)
-                offset[r] = std::size_t(y + r < y_end ? y + r : y) * tile.side + x_begin;
             std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth);
-            const Int old_depth = load_rows(depth, offset);
+            const Int old_depth = load_rows<S::kColumns>(depth, offset);
             // Depths in [0, 1] order like their bit patterns: LESS as an integer compare.
             const auto pass = inside & (new_depth < old_depth);
             fragments += unsigned(std::popcount(inside_bits));
             const unsigned pass_bits = lane_bits(pass);
-            if (pass_bits != 0) {
-                passed += unsigned(std::popcount(pass_bits));
-                store_rows(depth, offset, xsimd::select(pass, new_depth, old_depth));
-                update_rows(reinterpret_cast<std::int32_t*>(tile.triangle), offset, pass,
-                            Int(std::int32_t(triangle_id)));
-                update_rows(reinterpret_cast<std::int32_t*>(tile.lambda1), offset, pass,
-                            xsimd::bitwise_cast<Int>(lambda1));
-                update_rows(reinterpret_cast<std::int32_t*>(tile.lambda2), offset, pass,
-                            xsimd::bitwise_cast<Int>(lambda2));
-            }
+            if (pass_bits == 0) continue;
+            passed += unsigned(std::popcount(pass_bits));
+            store_rows<S::kColumns>(depth, offset, xsimd::select(pass, new_depth, old_depth));
+            update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.triangle), offset, pass, id);
+            update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.lambda1), offset, pass,
+                                     xsimd::bitwise_cast<Int>(lambda1));
+            update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.lambda2), offset, pass,
+                                     xsimd::bitwise_cast<Int>(lambda2));
         }
         for (int k = 0; k < 3; ++k) edges.e[k] += edges.down[k];
     }
@@ -227,50 +272,98 @@ struct StampEdges {
     counters.depth_passed += passed;
 }
 
-// A block in EdgeBlock32 form (biased rows and steps) as stamps.
+// A block in EdgeBlock32 form (biased rows and steps), at most kStampWidth wide, as stamps.
 [[gnu::always_inline]] inline void rasterize_stamp(const EdgeBlock32& b, const TileView& tile,
                                                    RasterCounters& counters) {
-    const Int lane = Int::load_aligned(kLaneIndex);
-    const Int ox = lane & Int(kStampWidth - 1), oy = lane >> 2;
+    using S = Stamp<kStampWidth>;
+    const Int ox = lane_column<S::kColumns>(), oy = lane_row<S::kColumns>();
     StampEdges edges;
     for (int k = 0; k < 3; ++k) {
         edges.e[k] = Int(b.row[k] - b.bias[k]) + ox * Int(b.step_x[k]) + oy * Int(b.step_y[k]);
-        edges.down[k] = Int(kStampRows * b.step_y[k]);
+        edges.across[k] = Int(S::kLanes * b.step_x[k]);
+        edges.down[k] = Int(S::kRows * b.step_y[k]);
         edges.threshold[k] = Int(-1 - b.bias[k]);
     }
-    rasterize_stamps(edges, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20, b.triangle_id,
-                     tile, counters);
+    rasterize_stamps<kStampWidth>(edges, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20,
+                                  b.triangle_id, tile, counters);
 }
 
-// Edge k of a tiny triangle, from corner a to corner b, over the stamp's lanes
-// (pixel centres x, y): E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
-// edge_function(); exact in int32, as every value is below 2^26.
+// Edge k of a tiny triangle, from corner a to corner b, over the lanes of the
+// first vector of its first stamp (pixel centres x, y): E = (bx - ax)(y - ay)
+// - (by - ay)(x - ax), as edge_function(); exact in int32, as every value is
+// below 2^26 (raster_kernels.hpp).
+template <int kWidth>
 [[gnu::always_inline]] inline void tiny_edge(const RasterTriangle& t, int k, int a, int b, const Int& x, const Int& y,
                                              StampEdges& edges) {
+    using S = Stamp<kWidth>;
     const Int ax(t.x[a]), ay(t.y[a]);
     const Int dx = Int(t.x[b]) - ax, dy = Int(t.y[b]) - ay;
     edges.e[k] = dx * (y - ay) - dy * (x - ax);
-    edges.down[k] = dx * Int(kStampRows * 256);
+    edges.across[k] = dy * Int(-S::kLanes * 256);
+    edges.down[k] = dx * Int(S::kRows * 256);
     // Top-left rule (EdgeStepper): a top edge (horizontal, interior below) or a left edge.
     const auto top_left = (dy < Int(0)) | ((dy == Int(0)) & (dx > Int(0)));
     edges.threshold[k] = xsimd::select(top_left, Int(-1), Int(0));
 }
 
+template <int kWidth>
+[[gnu::always_inline]] inline void rasterize_tiny(const RasterTriangle& t, std::uint32_t triangle_id,
+                                                  const TinyBox& box, const TileView& tile, RasterCounters& counters) {
+    static_assert(kSubpixelScale == 256);
+    using S = Stamp<kWidth>;
+    // The lanes' pixel centres, fixed point.
+    const Int x = Int(box.x_begin * 256 + 128) + (lane_column<S::kColumns>() << 8);
+    const Int y = Int(box.y_begin * 256 + 128) + (lane_row<S::kColumns>() << 8);
+    StampEdges edges;
+    tiny_edge<kWidth>(t, 0, 1, 2, x, y, edges);
+    tiny_edge<kWidth>(t, 1, 2, 0, x, y, edges);
+    tiny_edge<kWidth>(t, 2, 0, 1, x, y, edges);
+    rasterize_stamps<kWidth>(edges, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
+                             box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
+                             t.depth[2] - t.depth[0], triangle_id, tile, counters);
+}
+
+// Whether every corner lies within kTinySpan of the others in x and in y:
+// |a - b| < kTinySpan for the three pairs of x and of y, six lanes of one
+// vector (|a - b| < 2^24: no overflow). Hand-written: xsimd 8.1 has no lane
+// permutation, and the scalar tests kept x and y in registers the edge setup
+// then lacked (spilled to the stack).
+[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
+    static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) == 12);
+#if XSIMD_WITH_AVX2
+    // x0 x1 x2 y0 y1 y2 and two lanes of the pixel box, against x1 x2 x0 y1 y2 y0 (box lanes against themselves).
+    const __m256i corners = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&t));
+    const __m256i next = _mm256_permutevar8x32_epi32(corners, _mm256_setr_epi32(1, 2, 0, 4, 5, 3, 6, 7));
+    const __m256i span = _mm256_abs_epi32(_mm256_sub_epi32(corners, next));
+    return _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(kTinySpan), span))) == 0xff;
+#else
+    // x0 x1 x2 y0 against x1 x2 x0 y0, and y0 y1 y2 (box) against y1 y2 y0 (box).
+    const __m128i xs = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&t.x[0]));
+    const __m128i ys = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&t.y[0]));
+    const __m128i span_x = _mm_abs_epi32(_mm_sub_epi32(xs, _mm_shuffle_epi32(xs, _MM_SHUFFLE(3, 0, 2, 1))));
+    const __m128i span_y = _mm_abs_epi32(_mm_sub_epi32(ys, _mm_shuffle_epi32(ys, _MM_SHUFFLE(3, 0, 2, 1))));
+    const __m128i limit = _mm_set1_epi32(kTinySpan);
+    const __m128i near = _mm_and_si128(_mm_cmpgt_epi32(limit, span_x), _mm_cmpgt_epi32(limit, span_y));
+    return _mm_movemask_ps(_mm_castsi128_ps(near)) == 0xf;
+#endif
+}
+
 }  // namespace
 
-void TESSERA_SIMD_ENTRY(rasterize_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
-                                        const TileView& tile, RasterCounters& counters) {
-    static_assert(kSubpixelScale == 256);
-    // The lanes' pixel centres, fixed point.
-    const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kStampDx);
-    const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kStampDy);
-    StampEdges edges;
-    tiny_edge(t, 0, 1, 2, x, y, edges);
-    tiny_edge(t, 1, 2, 0, x, y, edges);
-    tiny_edge(t, 2, 0, 1, x, y, edges);
-    rasterize_stamps(edges, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
-                     box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
-                     t.depth[2] - t.depth[0], triangle_id, tile, counters);
+void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                                            TileBuffers& buffers, const TileView& view, RasterCounters& counters) {
+    const int x_begin = t.px_min > tile.x0 ? t.px_min : tile.x0, x_end = t.px_max < tile.x1 ? t.px_max + 1 : tile.x1;
+    const int y_begin = t.py_min > tile.y0 ? t.py_min : tile.y0, y_end = t.py_max < tile.y1 ? t.py_max + 1 : tile.y1;
+    if (x_begin >= x_end || y_begin >= y_end) return;
+    const int width = x_end - x_begin;
+    if (width <= kMaxTinyWidth && tiny(t)) {
+        // The narrowest stamp the box fits in.
+        const TinyBox box{x_begin, x_end, y_begin, y_end, tile.x0, tile.y0};
+        if (width <= 4) return rasterize_tiny<4>(t, triangle_id, box, view, counters);
+        if (width <= 8) return rasterize_tiny<8>(t, triangle_id, box, view, counters);
+        return rasterize_tiny<16>(t, triangle_id, box, view, counters);
+    }
+    rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, triangle_id, tile, buffers, counters);
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_stamp)(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters) {

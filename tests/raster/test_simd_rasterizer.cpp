@@ -232,6 +232,66 @@ TEST_CASE("tiny triangles: the stamp kernel matches the scalar loop, ties and ti
     }
 }
 
+// Tiny triangles (corners within 16 px of each other) up to 16 px wide take
+// 8- and 16-wide stamps (a row per AVX2 vector, two rows per AVX-512 one; 16
+// px as two AVX2 or four SSE vectors across): their lanes reach up to 15
+// pixels past the box's first column, into the next row or the buffers'
+// padding at the tile's right edge, so boxes against the tile's right and
+// bottom edges matter; corners as far apart as a tiny triangle allows give the
+// largest edge values the int32 setup meets; corners on pixel centres and
+// axis-aligned edges give top-left-rule ties; a shared depth gives depth ties.
+TEST_CASE("tiny triangles up to 16 px wide: 8- and 16-wide stamps match the scalar loop") {
+    std::mt19937 rng(8086);
+    std::uniform_int_distribution<int> coin(0, 3);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    constexpr int kSpan = raster::kTinySpan - 1;  // the farthest apart a tiny triangle's corners may be
+    for (int tile_side : {8, 16, 32, 64}) {
+        CAPTURE(tile_side);
+        const int image = 4 * tile_side, x0 = tile_side, y0 = 2 * tile_side;
+        const raster::TileRect tile{x0, y0, x0 + tile_side, y0 + tile_side};
+        std::uniform_int_distribution<int> pixel(x0 - 8, x0 + tile_side + 1);
+        std::vector<raster::RasterTriangle> triangles;
+        int width_5_to_8 = 0, width_9_to_16 = 0, widest = 0;
+        for (int kind = 0; triangles.size() < 6000; ++kind) {
+            // An anchor in or just outside the tile, often a box's width from its right or bottom edge.
+            glm::ivec2 anchor{pixel(rng), pixel(rng) + (y0 - x0)};
+            const int wide = 4 + kind % 13;  // box widths 4 to 16
+            if (kind % 4 == 1) anchor.x = x0 + tile_side - wide + coin(rng);
+            if (kind % 4 == 2) anchor.y = y0 + tile_side - 4 + coin(rng);
+            std::uniform_int_distribution<int> dx(0, std::min(wide * 256, kSpan)), dy(0, kind % 5 == 0 ? kSpan : 6 * 256);
+            auto corner = [&] {
+                glm::ivec2 p{anchor.x * 256 + dx(rng), anchor.y * 256 + dy(rng)};
+                if (kind % 3 == 0) p = p / 256 * 256 + 128;  // on pixel centres
+                else if (kind % 7 == 0) p = p / 256 * 256;   // on pixel corners
+                return p;
+            };
+            std::array<glm::ivec2, 3> p{corner(), corner(), corner()};
+            if (kind % 6 == 4) p[1].y = p[0].y;  // a horizontal edge (top or bottom)
+            if (kind % 6 == 5) p[1].x = p[0].x;  // a vertical edge (left or right)
+            if (kind % 11 == 0) {                // the widest span a tiny triangle has, both ways
+                p[1] = p[0] + glm::ivec2{kSpan, kind % 2 ? kSpan / 3 : 0};
+                p[2] = p[0] + glm::ivec2{kind % 4 < 2 ? kSpan / 2 : 0, kSpan};
+            }
+            const std::array<float, 3> depth =
+                kind % 4 == 3 ? std::array<float, 3>{0.5f, 0.5f, 0.5f} : std::array<float, 3>{unit(rng), unit(rng), unit(rng)};
+            const auto t = fixed_triangle(p, image, depth);
+            if (!t) continue;
+            triangles.push_back(*t);
+            const int width = std::min<int>(t->px_max + 1, tile.x1) - std::max<int>(t->px_min, tile.x0);
+            width_5_to_8 += width >= 5 && width <= 8;
+            width_9_to_16 += width >= 9;
+            widest = std::max(widest, t->px_max - t->px_min + 1);
+        }
+        const raster::TileBuffers reference = check_isas_match_scalar(triangles, tile);
+        int covered = 0;
+        for (std::size_t p = 0; p < std::size_t(tile_side) * tile_side; ++p) covered += reference.covered(p);
+        CHECK(covered > tile_side * tile_side / 2);
+        CHECK(width_5_to_8 > 1000);  // the 8-wide stamps
+        if (tile_side >= 16) CHECK(width_9_to_16 > 500);  // and the 16-wide ones
+        CHECK(widest == 16);  // the widest box a tiny triangle has
+    }
+}
+
 // A mesh of tiny triangles as the demo's spheres make them (~1.3 px²): a
 // jittered grid of quads, two triangles each, every edge shared, so every
 // pixel centre on an edge belongs to exactly one of its two triangles.
@@ -240,9 +300,10 @@ TEST_CASE("a mesh of tiny triangles sharing edges: every ISA matches the scalar 
     std::mt19937 rng(77);
     std::uniform_int_distribution<int> jitter(-60, 60);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    for (int pitch : {320, 384, 512}) {  // grid step in fixed point: 1.25, 1.5, 2 px
+    // Grid steps in fixed point: 1.25, 1.5, 2 px (4-wide stamps), 5 px (8-wide), 11 px (16-wide).
+    for (int pitch : {320, 384, 512, 1280, 2816}) {
         CAPTURE(pitch);
-        const int n = 40 * 256 / pitch;
+        const int n = 40 * 256 / pitch + 1;  // past the tile's far side
         std::vector<glm::ivec2> grid;
         std::vector<float> depth;
         for (int j = 0; j <= n; ++j)
