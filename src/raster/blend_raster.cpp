@@ -4,34 +4,11 @@
 #include <optional>
 
 #include "raster/raster_limits.hpp"
+#include "raster/triangle_in_tile.hpp"
 
 namespace tessera::raster {
 
 namespace {
-
-// The pixel box of t inside the tile, and its edges stepped from the box's
-// first pixel centre (as the opaque rasterizers place a triangle).
-struct Placed {
-    int x_begin, x_end, y_begin, y_end;
-    EdgeStepper e[3];  // edge k is opposite corner k
-};
-
-std::optional<Placed> place(const RasterTriangle& t, const TileRect& tile) {
-    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
-    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
-    if (x_begin >= x_end || y_begin >= y_end) return std::nullopt;
-    const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
-    const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
-    return Placed{x_begin, x_end, y_begin, y_end,
-                  {EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py), EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
-                   EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)}};
-}
-
-// Window depth, linear in screen space and kept >= 0: tile_rasterizer.cpp's window_depth.
-inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2) {
-    const float z = t.depth[0] + lambda1 * (t.depth[1] - t.depth[0]) + lambda2 * (t.depth[2] - t.depth[0]);
-    return z > 0.0f ? z : 0.0f;
-}
 
 void append(BlendFragments& out, int x, int y, const TileRect& tile, std::uint32_t id, float lambda1, float lambda2,
             std::uint8_t mask) {
@@ -58,9 +35,9 @@ std::size_t max_blend_fragments(const RasterTriangle& t, const TileRect& tile) {
 
 void rasterize_blended(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                        const TileBuffers& opaque, BlendFragments& out, RasterCounters& counters) {
-    const std::optional<Placed> placed = place(t, tile);
+    const std::optional<TriangleInTile> placed = place_in_tile(t, tile);
     if (!placed) return;
-    Placed p = *placed;
+    TriangleInTile p = *placed;
     EdgeStepper* e = p.e;
     for (int y = p.y_begin; y < p.y_end; ++y) {
         std::int64_t w0 = e[0].row, w1 = e[1].row, w2 = e[2].row;
@@ -83,16 +60,11 @@ void rasterize_blended(const RasterTriangle& t, std::uint32_t triangle_id, const
 
 void rasterize_blended(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                        const TileSamples& opaque, BlendFragments& out, RasterCounters& counters) {
-    const std::optional<Placed> placed = place(t, tile);
+    const std::optional<TriangleInTile> placed = place_in_tile(t, tile);
     if (!placed) return;
-    Placed p = *placed;
+    TriangleInTile p = *placed;
     EdgeStepper* e = p.e;
-    // As rasterize_triangle_msaa: E at a sample is E at the centre plus the steps scaled by the offset.
-    std::int64_t offset[3][kMsaaSamples];
-    for (int k = 0; k < 3; ++k)
-        for (int s = 0; s < kMsaaSamples; ++s)
-            offset[k][s] = (e[k].step_x / kSubpixelScale) * kSampleOffsetX[s] +
-                           (e[k].step_y / kSubpixelScale) * kSampleOffsetY[s];
+    const SampleEdgeOffsets offset = sample_edge_offsets(p.e);
     for (int y = p.y_begin; y < p.y_end; ++y) {
         std::int64_t w0 = e[0].row, w1 = e[1].row, w2 = e[2].row;
         std::size_t index = std::size_t(kMsaaSamples) * (std::size_t(y - tile.y0) * opaque.side + (p.x_begin - tile.x0));

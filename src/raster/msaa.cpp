@@ -9,6 +9,7 @@
 
 #include "raster/msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
+#include "raster/triangle_in_tile.hpp"
 
 namespace tessera::raster {
 
@@ -104,21 +105,12 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
 
 void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                              TileSamples& samples, RasterCounters& counters, const FragmentTest* test) {
-    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
-    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
-    if (x_begin >= x_end || y_begin >= y_end) return;
-    const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
-    const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
-    EdgeStepper e[3] = {EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py),
-                        EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
-                        EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
-    // E is affine: at a sample it is E at the centre plus the steps scaled by
-    // the sample's offset (in 1/256 pixel, so a step / 256 is exact).
-    std::int64_t offset[3][kMsaaSamples];
-    for (int k = 0; k < 3; ++k)
-        for (int s = 0; s < kMsaaSamples; ++s)
-            offset[k][s] = (e[k].step_x / kSubpixelScale) * kSampleOffsetX[s] +
-                           (e[k].step_y / kSubpixelScale) * kSampleOffsetY[s];
+    const std::optional<TriangleInTile> placed = place_in_tile(t, tile);
+    if (!placed) return;
+    const int x_begin = placed->x_begin, x_end = placed->x_end, y_begin = placed->y_begin, y_end = placed->y_end;
+    TriangleInTile p = *placed;
+    EdgeStepper* e = p.e;
+    const SampleEdgeOffsets offset = sample_edge_offsets(p.e);
     const float inv_area = t.inv_area;
     for (int y = y_begin; y < y_end; ++y) {
         std::int64_t w0 = e[0].row, w1 = e[1].row, w2 = e[2].row;
@@ -131,9 +123,7 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
                 ++counters.fragments;
                 const float lambda1 = float(s1 - e[1].bias) * inv_area;
                 const float lambda2 = float(s2 - e[2].bias) * inv_area;
-                // Linear in screen space, kept >= 0 as the one-sample rasterizer does.
-                const float z0 = t.depth[0] + lambda1 * (t.depth[1] - t.depth[0]) + lambda2 * (t.depth[2] - t.depth[0]);
-                const float z = z0 > 0.0f ? z0 : 0.0f;
+                const float z = window_depth(t, lambda1, lambda2);
                 if (z < samples.depth[index + s]) {
                     if (verdict == untested) {
                         // At the pixel centre: the unbiased edge values there, as screen_barycentrics().
@@ -148,7 +138,7 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
             }
             w0 += e[0].step_x, w1 += e[1].step_x, w2 += e[2].step_x;
         }
-        for (EdgeStepper& edge : e) edge.row += edge.step_y;
+        for (int k = 0; k < 3; ++k) e[k].row += e[k].step_y;
     }
 }
 

@@ -112,7 +112,7 @@ template <bool kWide>
             if (inside_bits == 0) continue;
             fragments += unsigned(std::popcount(inside_bits));
             // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
-            // (max(z, 0) gives 0 for -0 too, as the scalar z0 > 0 ? z0 : 0 does).
+            // (max(z, 0) gives 0 for -0 too, as the scalar window_depth does).
             Float lambda1, lambda2;
             if constexpr (kWide) {
                 lambda1 = round_to_float(Double(v1) + wide.offset_lo[0], Double(v1) + wide.offset_hi[0]) * inv_area;

@@ -6,6 +6,7 @@
 
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
+#include "raster/triangle_in_tile.hpp"
 
 namespace tessera::raster {
 
@@ -21,32 +22,6 @@ void TileBuffers::reset(int tile_side) {
 
 namespace {
 
-// The pixel block of the tile a triangle can cover, and its edges stepped from
-// the block's first pixel centre.
-struct TriangleInTile {
-    int x_begin, x_end, y_begin, y_end;  // image pixel coordinates
-    EdgeStepper e0, e1, e2;              // edge k is opposite corner k: its value is corner k's weight × area
-};
-
-[[gnu::always_inline]] inline
-std::optional<TriangleInTile> place_in_tile(const RasterTriangle& t, const TileRect& tile) {
-    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
-    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
-    if (x_begin >= x_end || y_begin >= y_end) return std::nullopt;
-    const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
-    const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
-    return TriangleInTile{x_begin, x_end, y_begin, y_end, EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py),
-                          EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
-                          EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
-}
-
-// Depth is linear in screen space; kept >= 0 (and -0 made +0) so that depths
-// also order like their bit patterns, which the SIMD kernels rely on.
-inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2) {
-    const float z = t.depth[0] + lambda1 * (t.depth[1] - t.depth[0]) + lambda2 * (t.depth[2] - t.depth[0]);
-    return z > 0.0f ? z : 0.0f;
-}
-
 // Whether every value of edge e the SIMD kernel can meet over a width×height
 // block starting at e.row — plus a vector's worth of lanes past its right end —
 // fits in int32.
@@ -58,8 +33,8 @@ inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2)
 
 [[gnu::always_inline]] inline bool fits_int32(const TriangleInTile& p) {
     const int width = p.x_end - p.x_begin, height = p.y_end - p.y_begin;
-    return edge_fits_int32(p.e0, width, height) && edge_fits_int32(p.e1, width, height) &&
-           edge_fits_int32(p.e2, width, height);
+    return edge_fits_int32(p.e[0], width, height) && edge_fits_int32(p.e[1], width, height) &&
+           edge_fits_int32(p.e[2], width, height);
 }
 
 // Whether the stamp kernel's edge values fit in int32: its lanes reach
@@ -67,7 +42,7 @@ inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2)
 // stamp, up to kMaxRasterLanes / kStampWidth rows below the box.
 [[gnu::always_inline]] inline bool stamp_fits_int32(const TriangleInTile& p) {
     const int reach_down = p.y_end - p.y_begin + kMaxRasterLanes / kStampWidth;
-    for (const EdgeStepper* e : {&p.e0, &p.e1, &p.e2}) {
+    for (const EdgeStepper* e : {&p.e[0], &p.e[1], &p.e[2]}) {
         const std::int64_t reach = std::llabs(e->row) + std::llabs(e->step_x) * (kStampWidth - 1) +
                                    std::llabs(e->step_y) * reach_down;
         if (reach >= (std::int64_t(1) << 31) - 1) return false;
@@ -80,7 +55,7 @@ inline float window_depth(const RasterTriangle& t, float lambda1, float lambda2)
 TriangleInTile sub_block(const TriangleInTile& p, int x_begin, int x_end, int y_begin, int y_end) {
     TriangleInTile sub = p;
     sub.x_begin = x_begin, sub.x_end = x_end, sub.y_begin = y_begin, sub.y_end = y_end;
-    for (EdgeStepper* e : {&sub.e0, &sub.e1, &sub.e2})
+    for (EdgeStepper* e : {&sub.e[0], &sub.e[1], &sub.e[2]})
         e->row += std::int64_t(x_begin - p.x_begin) * e->step_x + std::int64_t(y_begin - p.y_begin) * e->step_y;
     return sub;
 }
@@ -101,7 +76,7 @@ enum class BlockCoverage { none, partial, full };
 BlockCoverage block_coverage(const TriangleInTile& b) {
     const int width = b.x_end - b.x_begin, height = b.y_end - b.y_begin;
     bool full = true;
-    for (const EdgeStepper* e : {&b.e0, &b.e1, &b.e2}) {
+    for (const EdgeStepper* e : {&b.e[0], &b.e[1], &b.e[2]}) {
         const EdgeRange range = edge_range(*e, width, height);
         if (range.max < 0) return BlockCoverage::none;  // every centre outside this edge
         full = full && range.min >= 0;
@@ -116,7 +91,7 @@ template <bool kTested = false>
 void rasterize_scalar(const RasterTriangle& t, const TriangleInTile& placed, std::uint32_t triangle_id,
                       const TileRect& tile, TileBuffers& buffers, RasterCounters& counters,
                       const FragmentTest* test = nullptr) {
-    EdgeStepper e0 = placed.e0, e1 = placed.e1, e2 = placed.e2;
+    EdgeStepper e0 = placed.e[0], e1 = placed.e[1], e2 = placed.e[2];
     const float inv_area = t.inv_area;
     for (int y = placed.y_begin; y < placed.y_end; ++y) {
         std::int64_t w0 = e0.row, w1 = e1.row, w2 = e2.row;
@@ -166,7 +141,7 @@ EdgeBlock32 kernel_block(const RasterTriangle& t, const TriangleInTile& p, std::
     block.inv_area = t.inv_area;
     block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
     block.triangle_id = triangle_id;
-    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    const EdgeStepper* e[3] = {&p.e[0], &p.e[1], &p.e[2]};
     for (int k = 0; k < 3; ++k) block.bias[k] = std::int32_t(e[k]->bias);
     return block;
 }
@@ -190,7 +165,7 @@ void run_kernel(simd::Isa isa, const EdgeBlock32& block, const WideWeights* wide
 EdgeBlock32 int32_block(const RasterTriangle& t, const TriangleInTile& p, std::uint32_t triangle_id,
                         const TileRect& tile) {
     EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
-    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    const EdgeStepper* e[3] = {&p.e[0], &p.e[1], &p.e[2]};
     for (int k = 0; k < 3; ++k) {
         block.row[k] = std::int32_t(e[k]->row);
         block.step_x[k] = std::int32_t(e[k]->step_x);
@@ -231,7 +206,7 @@ bool rasterize_wide(simd::Isa isa, const RasterTriangle& t, const TriangleInTile
                     std::uint32_t triangle_id, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters) {
     const int width = p.x_end - p.x_begin, height = p.y_end - p.y_begin;
     EdgeBlock32 block = kernel_block(t, p, triangle_id, tile);
-    const EdgeStepper* e[3] = {&p.e0, &p.e1, &p.e2};
+    const EdgeStepper* e[3] = {&p.e[0], &p.e[1], &p.e[2]};
     for (int k = 0; k < 3; ++k) {
         // An edge >= 0 over the whole block passes everywhere: tested as 0.
         const bool passes = fully_covered || edge_range(*e[k], width, height).min >= 0;
@@ -243,7 +218,7 @@ bool rasterize_wide(simd::Isa isa, const RasterTriangle& t, const TriangleInTile
     block.fully_covered = fully_covered;
     WideWeights wide;
     for (int k = 0; k < 2; ++k) {
-        const EdgeStepper& weight = k == 0 ? p.e1 : p.e2;
+        const EdgeStepper& weight = k == 0 ? p.e[1] : p.e[2];
         wide.row[k] = double(weight.row - weight.bias);
         wide.step_x[k] = double(weight.step_x);
         wide.step_y[k] = double(weight.step_y);
