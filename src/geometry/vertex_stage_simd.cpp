@@ -56,7 +56,7 @@ Int outcodes(const Vec4& p, const Float& nx, const Float& ny, const Float& nz, c
 void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
     // Per-lane staging: object-space inputs in, results out.
     alignas(64) float position[3][kLanes], normal[3][kLanes], uv[2][kLanes];
-    alignas(64) float clip[4][kLanes], world[3][kLanes], world_normal[3][kLanes], depth[kLanes], inv_w[kLanes];
+    alignas(64) float clip[4][kLanes], world[3][kLanes], world_normal[3][kLanes], depth[kLanes];
     alignas(64) std::int32_t code[kLanes], screen_x[kLanes], screen_y[kLanes];
     const Float guard_x(in.guard_x_ndc), guard_y(in.guard_y_ndc), width(in.width), height(in.height);
     const Float half(0.5f), one(1.0f), subpixel(static_cast<float>(kSubpixelScale));
@@ -91,7 +91,6 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
         xsimd::nearbyint_as_int(sx * subpixel).store_aligned(screen_x);
         xsimd::nearbyint_as_int(sy * subpixel).store_aligned(screen_y);
         (p.z * w_inv * half + half).store_aligned(depth);
-        w_inv.store_aligned(inv_w);
         p.x.store_aligned(clip[0]), p.y.store_aligned(clip[1]), p.z.store_aligned(clip[2]), p.w.store_aligned(clip[3]);
         wx.store_aligned(world[0]), wy.store_aligned(world[1]), wz.store_aligned(world[2]);
         nx.store_aligned(world_normal[0]), ny.store_aligned(world_normal[1]), nz.store_aligned(world_normal[2]);
@@ -105,7 +104,7 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
             out.outcodes[first + i] = std::uint32_t(code[i]);
             std::int32_t* s = out.screen + 4 * (first + i);
             s[0] = screen_x[i], s[1] = screen_y[i];
-            s[2] = std::bit_cast<std::int32_t>(depth[i]), s[3] = std::bit_cast<std::int32_t>(inv_w[i]);
+            s[2] = std::bit_cast<std::int32_t>(depth[i]), s[3] = code[i];
         }
     }
 }

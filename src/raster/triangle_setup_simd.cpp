@@ -1,14 +1,17 @@
-// triangle setup's integer part over vectors of triangles (raster_kernels.hpp),
-// compiled once per ISA. Each lane does what setup_triangle() does for one
-// triangle, in int32: exact for triangles spanning less than 64 pixels, whose
-// coordinate deltas stay below 2^14 so that every product stays below 2^30.
-// Larger triangles are handed back to the scalar int64 code.
+// Triangle assembly's common case over vectors of triangles (raster_kernels.hpp),
+// compiled once per ISA. Each lane does for one triangle what
+// assemble_triangles()' scalar path does: the index check, the outcode test and
+// setup_triangle(), the latter in int32: exact for triangles spanning less than
+// 64 pixels, whose coordinate deltas stay below 2^14 so that every product
+// stays below 2^30. Larger triangles, and those that need clipping, are handed
+// back to the scalar code.
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
 
 #include "simd/hardware_gather.hpp"
 
+#include "geometry/clipper.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
@@ -17,8 +20,10 @@ namespace {
 
 using Arch = TESSERA_SIMD_ARCH;
 using Int = xsimd::batch<std::int32_t, Arch>;
+using Float = xsimd::batch<float, Arch>;
 using Mask = xsimd::batch_bool<std::int32_t, Arch>;
-static_assert(kSetupBatch % Int::size == 0);
+constexpr int kLanes = int(Int::size);
+static_assert(kSetupBatch % kLanes == 0 && kSetupBatch <= 64);
 
 constexpr std::int32_t kMaxExtent = 1 << 14;  // fixed-point units: 64 pixels
 
@@ -30,18 +35,92 @@ Int biased_edge(const Int& ax, const Int& ay, const Int& bx, const Int& by, cons
     return dx * (py - ay) - dy * (px - ax) + bias;
 }
 
+// Bit `lane` set for each true lane (xsimd 8.1 has no movemask): the lanes'
+// distinct powers of two summed.
+std::uint64_t lane_bits(const Mask& m) {
+    alignas(64) std::int32_t powers[kLanes];
+    for (int lane = 0; lane < kLanes; ++lane) powers[lane] = std::int32_t(1) << lane;
+    return std::uint32_t(xsimd::hadd(xsimd::select(m, Int::load_aligned(powers), Int(0))));
+}
+
+// The ScreenVertex of each lane's corner, as four vectors.
+struct Corner {
+    Int x, y, depth, outcode;  // depth: the float's bits
+};
+
+// Loads the 16-byte ScreenVertex of every lane and transposes them: on this
+// project's AMD machines a hardware gather costs ~17 cycles, so 4 of them per
+// corner would cost more than all the rest of setup. xsimd 8.1 has no
+// transpose, hence the intrinsics.
+Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
+#if defined(__AVX512F__)
+    // Not measured on AMD; Intel's gathers are quicker.
+    const Int at = Int::load_aligned(ref) * Int(4);
+    return {simd::hardware_gather(screen, at), simd::hardware_gather(screen, at + Int(1)),
+            simd::hardware_gather(screen, at + Int(2)), simd::hardware_gather(screen, at + Int(3))};
+#elif defined(__AVX2__)
+    // Lanes j and j + 4 share a register, one per 128-bit half; the 4×4
+    // transpose within each half then leaves every lane in its place.
+    __m256 v[4];
+    for (int j = 0; j < 4; ++j) {
+        const __m128 lo = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
+        const __m128 hi = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j + 4]));
+        v[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+    }
+    const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpacklo_ps(v[2], v[3]);
+    const __m256 t2 = _mm256_unpackhi_ps(v[0], v[1]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
+    return {Int(_mm256_castps_si256(_mm256_shuffle_ps(t0, t1, 0x44))),
+            Int(_mm256_castps_si256(_mm256_shuffle_ps(t0, t1, 0xEE))),
+            Int(_mm256_castps_si256(_mm256_shuffle_ps(t2, t3, 0x44))),
+            Int(_mm256_castps_si256(_mm256_shuffle_ps(t2, t3, 0xEE)))};
+#else
+    __m128 v[4];
+    for (int j = 0; j < 4; ++j) v[j] = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+    return {Int(_mm_castps_si128(v[0])), Int(_mm_castps_si128(v[1])), Int(_mm_castps_si128(v[2])),
+            Int(_mm_castps_si128(v[3]))};
+#endif
+}
+
 void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
-    constexpr int kLanes = int(Int::size);
     const Int half(kSubpixelScale / 2), round_up(kSubpixelScale - 1), zero(0), one(1);
     const Int last_x(in.width - 1), last_y(in.height - 1);
-    for (int i = 0; i < in.count; i += kLanes) {
-        // Corner positions: x at int32 index 4·ref, y at 4·ref + 1.
-        Int x[3], y[3];
-        for (int k = 0; k < 3; ++k) {
-            const Int at = Int::load_unaligned(in.ref[k] + i) * Int(4);
-            x[k] = simd::hardware_gather(in.screen, at);
-            y[k] = simd::hardware_gather(in.screen, at + one);
+    const Mask cull_positive(in.culling == Culling::drop_positive_area);
+    const Mask cull_negative(in.culling == Culling::drop_negative_area);
+    const bool msaa = in.samples != 1;
+    const int padded = (in.count + kLanes - 1) / kLanes * kLanes;
+    // Corner references, and whether the triangle's indices are in range (an
+    // index that is not drops the triangle, which reads vertex 0 of the mesh instead).
+    alignas(64) std::int32_t ref[3][kSetupBatch], valid[kSetupBatch];
+    const auto vertex_count = std::uint32_t(in.vertex_count);
+    for (int t = 0; t < padded; ++t) {
+        const std::uint32_t i0 = in.indices[3 * t], i1 = in.indices[3 * t + 1], i2 = in.indices[3 * t + 2];
+        const bool ok = (i0 < vertex_count) & (i1 < vertex_count) & (i2 < vertex_count) & (t < in.count);
+        ref[0][t] = in.first_vertex + std::int32_t(ok ? i0 : 0);
+        ref[1][t] = in.first_vertex + std::int32_t(ok ? i1 : 0);
+        ref[2][t] = in.first_vertex + std::int32_t(ok ? i2 : 0);
+        valid[t] = ok ? -1 : 0;
+    }
+    out.kept = out.scalar = out.clipped = 0;
+    int records = 0;
+    for (int i = 0; i < padded; i += kLanes) {
+        Corner corner[3];
+        for (int k = 0; k < 3; ++k) corner[k] = load_corner(in.screen, ref[k] + i);
+        // geometry::classify_triangle over the lanes.
+        const Int any_outside = corner[0].outcode | corner[1].outcode | corner[2].outcode;
+        const Mask rejected = ((any_outside & Int(geometry::kNotFinite)) != zero) |
+                              ((corner[0].outcode & corner[1].outcode & corner[2].outcode) != zero);
+        const Mask crosses = (any_outside & Int(geometry::kClipPlaneBits)) != zero;
+        const Mask live = (Int::load_aligned(valid + i) != zero) & !rejected;
+        out.clipped |= lane_bits(live & crosses) << i;
+        const Mask accepted = live & !crosses;
+        if (msaa) {  // the 4× sample tests are the scalar setup's
+            out.scalar |= lane_bits(accepted) << i;
+            continue;
         }
+
+        // Positions: any values in lanes not accepted, which are masked off below.
+        const Int x[3] = {corner[0].x, corner[1].x, corner[2].x}, y[3] = {corner[0].y, corner[1].y, corner[2].y};
         const Int min_x = xsimd::min(x[0], xsimd::min(x[1], x[2])), max_x = xsimd::max(x[0], xsimd::max(x[1], x[2]));
         const Int min_y = xsimd::min(y[0], xsimd::min(y[1], y[2])), max_y = xsimd::max(y[0], xsimd::max(y[1], y[2]));
         // Pixel box of the centres inside the extent (>> is floor division), clamped to the image.
@@ -71,19 +150,45 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
                 covered = covered | ((((w0 | w1) | w2) >= zero) & (cx <= px_max) & (cy <= py_max));
             }
         const Mask small_box = ((px_max - px_min) <= one) & ((py_max - py_min) <= one);
+        const Mask culled = (cull_positive & (area > zero)) | (cull_negative & swapped);
 
-        // The scalar order of decisions: no area, then an empty box, then an uncovered small box.
-        const Mask dropped = small_enough & ((area == zero) | empty | (small_box & !covered));
-        const Int verdict = xsimd::select(
-            empty, Int(kSetupDropped),
-            xsimd::select(!small_enough, Int(kSetupScalar), xsimd::select(dropped, Int(kSetupDropped), Int(kSetupKept))));
-        verdict.store_unaligned(out.verdict + i);
-        xsimd::select(swapped, one, zero).store_unaligned(out.swapped + i);
-        double_area.store_unaligned(out.double_area + i);
-        px_min.store_unaligned(out.px_min + i);
-        px_max.store_unaligned(out.px_max + i);
-        py_min.store_unaligned(out.py_min + i);
-        py_max.store_unaligned(out.py_max + i);
+        // Every reason setup_triangle() has to drop a triangle; its order does not matter here.
+        const Mask dropped = (area == zero) | culled | empty | (small_box & !covered);
+        const Mask kept = accepted & small_enough & !dropped;
+        out.scalar |= lane_bits(accepted & !small_enough & !empty) << i;
+        const std::uint64_t kept_bits = lane_bits(kept);
+        if (kept_bits == 0) continue;
+        out.kept |= kept_bits << i;
+
+        // The kept lanes' records, field by field as setup_triangle() fills them.
+        alignas(64) std::int32_t words[13][kLanes];
+        alignas(64) float depths[3][kLanes], inv_area[kLanes];
+        x[0].store_aligned(words[0]), x1.store_aligned(words[1]), x2.store_aligned(words[2]);
+        y[0].store_aligned(words[3]), y1.store_aligned(words[4]), y2.store_aligned(words[5]);
+        const Int ref0 = Int::load_aligned(ref[0] + i), ref1 = Int::load_aligned(ref[1] + i),
+                  ref2 = Int::load_aligned(ref[2] + i);
+        ref0.store_aligned(words[6]);
+        xsimd::select(swapped, ref2, ref1).store_aligned(words[7]);
+        xsimd::select(swapped, ref1, ref2).store_aligned(words[8]);
+        px_min.store_aligned(words[9]), px_max.store_aligned(words[10]);
+        py_min.store_aligned(words[11]), py_max.store_aligned(words[12]);
+        const Int depth[3] = {corner[0].depth, corner[1].depth, corner[2].depth};
+        xsimd::bitwise_cast<Float>(depth[0]).store_aligned(depths[0]);
+        xsimd::bitwise_cast<Float>(xsimd::select(swapped, depth[2], depth[1])).store_aligned(depths[1]);
+        xsimd::bitwise_cast<Float>(xsimd::select(swapped, depth[1], depth[2])).store_aligned(depths[2]);
+        // Division is correctly rounded in every ISA, as the scalar 1.0f / float(area) is.
+        (Float(1.0f) / xsimd::to_float(double_area)).store_aligned(inv_area);
+        for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1) {
+            const int lane = __builtin_ctzll(bits);
+            RasterTriangle& t = out.records[records++];
+            for (int k = 0; k < 3; ++k) {
+                t.x[k] = words[k][lane], t.y[k] = words[3 + k][lane];
+                t.depth[k] = depths[k][lane], t.vertex[k] = std::uint32_t(words[6 + k][lane]);
+            }
+            t.px_min = std::int16_t(words[9][lane]), t.px_max = std::int16_t(words[10][lane]);
+            t.py_min = std::int16_t(words[11][lane]), t.py_max = std::int16_t(words[12][lane]);
+            t.inv_area = inv_area[lane];
+        }
     }
 }
 
