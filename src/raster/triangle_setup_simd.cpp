@@ -5,7 +5,9 @@
 // 64 pixels, whose coordinate deltas stay below 2^14 so that every product
 // stays below 2^30. Larger triangles, and those that need clipping, are handed
 // back to the scalar code.
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "simd/kernel_prelude.hpp"
 
@@ -79,6 +81,53 @@ Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
     _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
     return {Int(_mm_castps_si128(v[0])), Int(_mm_castps_si128(v[1])), Int(_mm_castps_si128(v[2])),
             Int(_mm_castps_si128(v[3]))};
+#endif
+}
+
+// RasterTriangle as 16 int32 words, in the order of its fields.
+static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_min) == 24 &&
+                  offsetof(RasterTriangle, py_min) == 28 && offsetof(RasterTriangle, inv_area) == 32 &&
+                  offsetof(RasterTriangle, depth) == 36 && offsetof(RasterTriangle, vertex) == 48 &&
+                  sizeof(RasterTriangle) == 64,
+              "to_records() writes RasterTriangle as x[3], y[3], px_min..py_max, inv_area, depth[3], vertex[3], pad");
+
+// Lane j's record from word w of words[w] for every w: a transpose of 16 × lanes
+// words (intrinsics: xsimd 8.1 has no transpose or scatter).
+void to_records(const Int (&words)[16], RasterTriangle* records) {
+#if defined(__AVX2__) && !defined(__AVX512F__)
+    // Two 8 × 8 transposes: words 0-7 and 8-15, each lane's half of a record.
+    for (int part = 0; part < 2; ++part) {
+        __m256 r[8];
+        for (int w = 0; w < 8; ++w) r[w] = _mm256_castsi256_ps(words[8 * part + w]);
+        __m256 t[8], u[8];
+        for (int w = 0; w < 8; w += 2) t[w] = _mm256_unpacklo_ps(r[w], r[w + 1]), t[w + 1] = _mm256_unpackhi_ps(r[w], r[w + 1]);
+        for (int w = 0; w < 8; w += 4) {
+            u[w] = _mm256_shuffle_ps(t[w], t[w + 2], 0x44), u[w + 1] = _mm256_shuffle_ps(t[w], t[w + 2], 0xEE);
+            u[w + 2] = _mm256_shuffle_ps(t[w + 1], t[w + 3], 0x44), u[w + 3] = _mm256_shuffle_ps(t[w + 1], t[w + 3], 0xEE);
+        }
+        for (int j = 0; j < 4; ++j) {
+            float* low = reinterpret_cast<float*>(&records[j]) + 8 * part;
+            float* high = reinterpret_cast<float*>(&records[j + 4]) + 8 * part;
+            _mm256_store_ps(low, _mm256_permute2f128_ps(u[j], u[j + 4], 0x20));
+            _mm256_store_ps(high, _mm256_permute2f128_ps(u[j], u[j + 4], 0x31));
+        }
+    }
+#elif !defined(__AVX__)
+    // Four 4 × 4 transposes, a quarter of each record each.
+    for (int part = 0; part < 4; ++part) {
+        __m128 r[4];
+        for (int w = 0; w < 4; ++w) r[w] = _mm_castsi128_ps(words[4 * part + w]);
+        _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
+        for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[j]) + 4 * part, r[j]);
+    }
+#else
+    alignas(64) std::int32_t lanes[16][kLanes];
+    for (int w = 0; w < 16; ++w) words[w].store_aligned(lanes[w]);
+    for (int j = 0; j < kLanes; ++j) {
+        std::int32_t record[16];
+        for (int w = 0; w < 16; ++w) record[w] = lanes[w][j];
+        std::memcpy(&records[j], record, sizeof(record));
+    }
 #endif
 }
 
@@ -160,35 +209,22 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         if (kept_bits == 0) continue;
         out.kept |= kept_bits << i;
 
-        // The kept lanes' records, field by field as setup_triangle() fills them.
-        alignas(64) std::int32_t words[13][kLanes];
-        alignas(64) float depths[3][kLanes], inv_area[kLanes];
-        x[0].store_aligned(words[0]), x1.store_aligned(words[1]), x2.store_aligned(words[2]);
-        y[0].store_aligned(words[3]), y1.store_aligned(words[4]), y2.store_aligned(words[5]);
-        const Int ref0 = Int::load_aligned(ref[0] + i), ref1 = Int::load_aligned(ref[1] + i),
-                  ref2 = Int::load_aligned(ref[2] + i);
-        ref0.store_aligned(words[6]);
-        xsimd::select(swapped, ref2, ref1).store_aligned(words[7]);
-        xsimd::select(swapped, ref1, ref2).store_aligned(words[8]);
-        px_min.store_aligned(words[9]), px_max.store_aligned(words[10]);
-        py_min.store_aligned(words[11]), py_max.store_aligned(words[12]);
-        const Int depth[3] = {corner[0].depth, corner[1].depth, corner[2].depth};
-        xsimd::bitwise_cast<Float>(depth[0]).store_aligned(depths[0]);
-        xsimd::bitwise_cast<Float>(xsimd::select(swapped, depth[2], depth[1])).store_aligned(depths[1]);
-        xsimd::bitwise_cast<Float>(xsimd::select(swapped, depth[1], depth[2])).store_aligned(depths[2]);
+        // The kept lanes' records, as setup_triangle() fills them: their 16
+        // int32 words (RecordWords) a vector each, turned into one record per lane.
+        const Int ref1 = Int::load_aligned(ref[1] + i), ref2 = Int::load_aligned(ref[2] + i);
+        const Int depth1 = xsimd::select(swapped, corner[2].depth, corner[1].depth);
+        const Int depth2 = xsimd::select(swapped, corner[1].depth, corner[2].depth);
         // Division is correctly rounded in every ISA, as the scalar 1.0f / float(area) is.
-        (Float(1.0f) / xsimd::to_float(double_area)).store_aligned(inv_area);
-        for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1) {
-            const int lane = __builtin_ctzll(bits);
-            RasterTriangle& t = out.records[records++];
-            for (int k = 0; k < 3; ++k) {
-                t.x[k] = words[k][lane], t.y[k] = words[3 + k][lane];
-                t.depth[k] = depths[k][lane], t.vertex[k] = std::uint32_t(words[6 + k][lane]);
-            }
-            t.px_min = std::int16_t(words[9][lane]), t.px_max = std::int16_t(words[10][lane]);
-            t.py_min = std::int16_t(words[11][lane]), t.py_max = std::int16_t(words[12][lane]);
-            t.inv_area = inv_area[lane];
-        }
+        const Int inv_area = xsimd::bitwise_cast<Int>(Float(1.0f) / xsimd::to_float(double_area));
+        const Int words[16] = {x[0], x1, x2, y[0], y1, y2,
+                               px_min | (px_max << 16), py_min | (py_max << 16),  // int16 pairs, low half first
+                               inv_area, corner[0].depth, depth1, depth2,
+                               Int::load_aligned(ref[0] + i), xsimd::select(swapped, ref2, ref1),
+                               xsimd::select(swapped, ref1, ref2), zero};
+        alignas(64) RasterTriangle lane_records[kLanes];
+        to_records(words, lane_records);
+        for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1)
+            out.records[records++] = lane_records[__builtin_ctzll(bits)];
     }
 }
 
