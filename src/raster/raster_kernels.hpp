@@ -103,7 +103,7 @@ struct SetupBatchInput {
     std::int32_t first_vertex;      // the mesh's first frame vertex
     std::int32_t vertex_count;      // > 0: an index at or past it drops its triangle
     int width, height;              // viewport
-    int samples;                    // 1; with 4 (MSAA) every accepted triangle is left to the scalar setup
+    int samples;                    // 1, or 4: pixel boxes and coverage by the 4× MSAA sample positions
     Culling culling;
 };
 

@@ -33,8 +33,8 @@ struct AssembledTriangles {
 // culling, clipping and setup, in order. With a SIMD ISA, the index check,
 // the outcode test, culling and setup run a vector of triangles at a time
 // (the same result as the scalar path's one by one); triangles that cross a
-// clip plane (fans) or are large are merged in from the scalar code. samples: 1, or 4 for 4× MSAA (set up one by one: the kernels
-// test pixel centres only). culling: which windings setup drops (clipping
+// clip plane (fans) or are large are merged in from the scalar code.
+// samples: 1, or 4 for 4× MSAA. culling: which windings setup drops (clipping
 // keeps a triangle's winding, so its pieces are culled alike). colors: the
 // mesh's vertex colours (indexed like `indices`) or empty; a corner clipping
 // makes gets its colour interpolated as its other attributes are.

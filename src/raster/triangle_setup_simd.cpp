@@ -14,6 +14,7 @@
 #include "simd/hardware_gather.hpp"
 
 #include "geometry/clipper.hpp"
+#include "raster/msaa.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
@@ -136,7 +137,13 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int last_x(in.width - 1), last_y(in.height - 1);
     const Mask cull_positive(in.culling == Culling::drop_positive_area);
     const Mask cull_negative(in.culling == Culling::drop_negative_area);
+    // The points a pixel is tested at: its centre, or its 4 samples
+    // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
+    // box holds the pixels with a point between the triangle's extremes.
     const bool msaa = in.samples != 1;
+    const int point_count = msaa ? kMsaaSamples : 1;
+    const Int first_point(msaa ? 7 * kSubpixelScale / 8 : kSubpixelScale / 2);
+    const Int last_point(msaa ? kSubpixelScale / 8 : kSubpixelScale / 2);
     const int padded = (in.count + kLanes - 1) / kLanes * kLanes;
     // Corner references, and whether the triangle's indices are in range (an
     // index that is not drops the triangle, which reads vertex 0 of the mesh instead).
@@ -163,20 +170,16 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         const Mask live = (Int::load_aligned(valid + i) != zero) & !rejected;
         out.clipped |= lane_bits(live & crosses) << i;
         const Mask accepted = live & !crosses;
-        if (msaa) {  // the 4× sample tests are the scalar setup's
-            out.scalar |= lane_bits(accepted) << i;
-            continue;
-        }
-
         // Positions: any values in lanes not accepted, which are masked off below.
         const Int x[3] = {corner[0].x, corner[1].x, corner[2].x}, y[3] = {corner[0].y, corner[1].y, corner[2].y};
         const Int min_x = xsimd::min(x[0], xsimd::min(x[1], x[2])), max_x = xsimd::max(x[0], xsimd::max(x[1], x[2]));
         const Int min_y = xsimd::min(y[0], xsimd::min(y[1], y[2])), max_y = xsimd::max(y[0], xsimd::max(y[1], y[2]));
         // Pixel box of the centres inside the extent (>> is floor division), clamped to the image.
-        const Int px_min = xsimd::max((min_x - half + round_up) >> kSubpixelBits, zero);
-        const Int px_max = xsimd::min((max_x - half) >> kSubpixelBits, last_x);
-        const Int py_min = xsimd::max((min_y - half + round_up) >> kSubpixelBits, zero);
-        const Int py_max = xsimd::min((max_y - half) >> kSubpixelBits, last_y);
+        // With 4× MSAA, the pixels with a sample inside (triangle_setup.cpp).
+        const Int px_min = xsimd::max((min_x - first_point + round_up) >> kSubpixelBits, zero);
+        const Int px_max = xsimd::min((max_x - last_point) >> kSubpixelBits, last_x);
+        const Int py_min = xsimd::max((min_y - first_point + round_up) >> kSubpixelBits, zero);
+        const Int py_max = xsimd::min((max_y - last_point) >> kSubpixelBits, last_y);
         const Mask empty = (px_min > px_max) | (py_min > py_max);
         const Mask small_enough = ((max_x - min_x) < Int(kMaxExtent)) & ((max_y - min_y) < Int(kMaxExtent));
 
@@ -187,17 +190,34 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         const Int x1 = xsimd::select(swapped, x[2], x[1]), y1 = xsimd::select(swapped, y[2], y[1]);
         const Int x2 = xsimd::select(swapped, x[1], x[2]), y2 = xsimd::select(swapped, y[1], y[2]);
 
-        // Boxes of at most 2×2 centres: is any of them covered?
+        // Boxes of at most 2×2 pixels: is any of their centres (samples) covered?
+        // Each edge is evaluated at the box's first centre, then stepped.
+        const Int ax[3] = {x1, x2, x[0]}, ay[3] = {y1, y2, y[0]}, bx[3] = {x2, x[0], x1}, by[3] = {y2, y[0], y1};
+        const Int first_px = px_min * Int(kSubpixelScale) + half, first_py = py_min * Int(kSubpixelScale) + half;
+        Int edge[3], edge_dx[3], edge_dy[3];
+        for (int k = 0; k < 3; ++k) {
+            edge_dx[k] = bx[k] - ax[k], edge_dy[k] = by[k] - ay[k];
+            edge[k] = biased_edge(ax[k], ay[k], bx[k], by[k], first_px, first_py);
+        }
+        const Mask second_column = (px_min + one) <= px_max, second_row = (py_min + one) <= py_max;
         Mask covered(false);
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-                const Int cx = px_min + Int(dx), cy = py_min + Int(dy);
-                const Int px = cx * Int(kSubpixelScale) + half, py = cy * Int(kSubpixelScale) + half;
-                const Int w0 = biased_edge(x1, y1, x2, y2, px, py);
-                const Int w1 = biased_edge(x2, y2, x[0], y[0], px, py);
-                const Int w2 = biased_edge(x[0], y[0], x1, y1, px, py);
-                covered = covered | ((((w0 | w1) | w2) >= zero) & (cx <= px_max) & (cy <= py_max));
-            }
+        for (int p = 0; p < point_count; ++p) {
+            Int at_point[3];  // E at the point (x offset ox, y offset oy from the centre): E + dx·oy - dy·ox
+            for (int k = 0; k < 3; ++k)
+                at_point[k] = msaa ? edge[k] + edge_dx[k] * Int(kSampleOffsetY[p]) - edge_dy[k] * Int(kSampleOffsetX[p])
+                                   : edge[k];
+            for (int row = 0; row < 2; ++row)
+                for (int column = 0; column < 2; ++column) {
+                    Int e[3];
+                    for (int k = 0; k < 3; ++k)  // one pixel right: -dy·256; down: +dx·256
+                        e[k] = at_point[k] - Int(column) * (edge_dy[k] << kSubpixelBits) +
+                               Int(row) * (edge_dx[k] << kSubpixelBits);
+                    Mask inside = ((e[0] | e[1]) | e[2]) >= zero;
+                    if (column) inside = inside & second_column;
+                    if (row) inside = inside & second_row;
+                    covered = covered | inside;
+                }
+        }
         const Mask small_box = ((px_max - px_min) <= one) & ((py_max - py_min) <= one);
         const Mask culled = (cull_positive & (area > zero)) | (cull_negative & swapped);
 
