@@ -12,6 +12,7 @@
 #include "simd/kernel_prelude.hpp"
 
 #include "simd/hardware_gather.hpp"
+#include "simd/transpose.hpp"
 
 #include "geometry/clipper.hpp"
 #include "raster/msaa.hpp"
@@ -62,20 +63,16 @@ Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
     return {simd::hardware_gather(screen, at), simd::hardware_gather(screen, at + Int(1)),
             simd::hardware_gather(screen, at + Int(2)), simd::hardware_gather(screen, at + Int(3))};
 #elif defined(__AVX2__)
-    // Lanes j and j + 4 share a register, one per 128-bit half; the 4×4
-    // transpose within each half then leaves every lane in its place.
+    // Lanes j and j + 4 share a register, one per 128-bit half.
     __m256 v[4];
     for (int j = 0; j < 4; ++j) {
         const __m128 lo = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
         const __m128 hi = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j + 4]));
         v[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
     }
-    const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpacklo_ps(v[2], v[3]);
-    const __m256 t2 = _mm256_unpackhi_ps(v[0], v[1]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
-    return {Int(_mm256_castps_si256(_mm256_shuffle_ps(t0, t1, 0x44))),
-            Int(_mm256_castps_si256(_mm256_shuffle_ps(t0, t1, 0xEE))),
-            Int(_mm256_castps_si256(_mm256_shuffle_ps(t2, t3, 0x44))),
-            Int(_mm256_castps_si256(_mm256_shuffle_ps(t2, t3, 0xEE)))};
+    simd::transpose4x4_halves(v);
+    return {Int(_mm256_castps_si256(v[0])), Int(_mm256_castps_si256(v[1])), Int(_mm256_castps_si256(v[2])),
+            Int(_mm256_castps_si256(v[3]))};
 #else
     __m128 v[4];
     for (int j = 0; j < 4; ++j) v[j] = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
@@ -100,18 +97,8 @@ void to_records(const Int (&words)[16], RasterTriangle* records) {
     for (int part = 0; part < 2; ++part) {
         __m256 r[8];
         for (int w = 0; w < 8; ++w) r[w] = _mm256_castsi256_ps(words[8 * part + w]);
-        __m256 t[8], u[8];
-        for (int w = 0; w < 8; w += 2) t[w] = _mm256_unpacklo_ps(r[w], r[w + 1]), t[w + 1] = _mm256_unpackhi_ps(r[w], r[w + 1]);
-        for (int w = 0; w < 8; w += 4) {
-            u[w] = _mm256_shuffle_ps(t[w], t[w + 2], 0x44), u[w + 1] = _mm256_shuffle_ps(t[w], t[w + 2], 0xEE);
-            u[w + 2] = _mm256_shuffle_ps(t[w + 1], t[w + 3], 0x44), u[w + 3] = _mm256_shuffle_ps(t[w + 1], t[w + 3], 0xEE);
-        }
-        for (int j = 0; j < 4; ++j) {
-            float* low = reinterpret_cast<float*>(&records[j]) + 8 * part;
-            float* high = reinterpret_cast<float*>(&records[j + 4]) + 8 * part;
-            _mm256_store_ps(low, _mm256_permute2f128_ps(u[j], u[j + 4], 0x20));
-            _mm256_store_ps(high, _mm256_permute2f128_ps(u[j], u[j + 4], 0x31));
-        }
+        simd::transpose8x8(r);
+        for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[j]) + 8 * part, r[j]);
     }
 #elif !defined(__AVX__)
     // Four 4 × 4 transposes, a quarter of each record each.
