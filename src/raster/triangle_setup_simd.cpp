@@ -39,12 +39,38 @@ Int biased_edge(const Int& ax, const Int& ay, const Int& bx, const Int& by, cons
     return dx * (py - ay) - dy * (px - ax) + bias;
 }
 
-// Bit `lane` set for each true lane (xsimd 8.1 has no movemask): the lanes'
-// distinct powers of two summed.
+// Bit `lane` set for each true lane (xsimd 8.1 has no movemask).
 std::uint64_t lane_bits(const Mask& m) {
+#if defined(__AVX512F__)
     alignas(64) std::int32_t powers[kLanes];
     for (int lane = 0; lane < kLanes; ++lane) powers[lane] = std::int32_t(1) << lane;
     return std::uint32_t(xsimd::hadd(xsimd::select(m, Int::load_aligned(powers), Int(0))));
+#elif defined(__AVX2__)
+    return std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(m)));
+#else
+    return std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(m)));
+#endif
+}
+
+// The corner indices of kLanes triangles (3 per triangle, from `indices`), a vector per corner.
+void load_indices(const std::uint32_t* indices, Int (&index)[3]) {
+#if defined(__AVX2__) && !defined(__AVX512F__)
+    // Corner k of triangle j is word 3j + k of three registers' 24: blend the
+    // three so each lane holds a word of its corner, then put them in order.
+    const auto* words = reinterpret_cast<const __m256i*>(indices);
+    const __m256i a = _mm256_loadu_si256(words), b = _mm256_loadu_si256(words + 1), c = _mm256_loadu_si256(words + 2);
+    const __m256i corner0 = _mm256_blend_epi32(_mm256_blend_epi32(a, b, 0b10010010), c, 0b00100100);
+    const __m256i corner1 = _mm256_blend_epi32(_mm256_blend_epi32(a, b, 0b00100100), c, 0b01001001);
+    const __m256i corner2 = _mm256_blend_epi32(_mm256_blend_epi32(a, b, 0b01001001), c, 0b10010010);
+    index[0] = Int(_mm256_permutevar8x32_epi32(corner0, _mm256_setr_epi32(0, 3, 6, 1, 4, 7, 2, 5)));
+    index[1] = Int(_mm256_permutevar8x32_epi32(corner1, _mm256_setr_epi32(1, 4, 7, 2, 5, 0, 3, 6)));
+    index[2] = Int(_mm256_permutevar8x32_epi32(corner2, _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7)));
+#else
+    alignas(64) std::int32_t lanes[3][kLanes];
+    for (int j = 0; j < kLanes; ++j)
+        for (int k = 0; k < 3; ++k) lanes[k][j] = std::int32_t(indices[3 * j + k]);
+    for (int k = 0; k < 3; ++k) index[k] = Int::load_aligned(lanes[k]);
+#endif
 }
 
 // The ScreenVertex of each lane's corner, as four vectors.
@@ -132,21 +158,27 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int first_point(msaa ? 7 * kSubpixelScale / 8 : kSubpixelScale / 2);
     const Int last_point(msaa ? kSubpixelScale / 8 : kSubpixelScale / 2);
     const int padded = (in.count + kLanes - 1) / kLanes * kLanes;
-    // Corner references, and whether the triangle's indices are in range (an
-    // index that is not drops the triangle, which reads vertex 0 of the mesh instead).
+    const Int first_vertex(in.first_vertex), vertex_count(in.vertex_count);
+    alignas(64) std::int32_t lane_index[kLanes];
+    for (int lane = 0; lane < kLanes; ++lane) lane_index[lane] = lane;
+    // Corner references, for the whole batch first: the corner loads below read
+    // them lane by lane, which is slow straight after a vector store. An index
+    // out of range (as int32 too: vertex_count < 2^31) drops its triangle,
+    // whose corners then read vertex 0 of the mesh.
     alignas(64) std::int32_t ref[3][kSetupBatch], valid[kSetupBatch];
-    const auto vertex_count = std::uint32_t(in.vertex_count);
-    for (int t = 0; t < padded; ++t) {
-        const std::uint32_t i0 = in.indices[3 * t], i1 = in.indices[3 * t + 1], i2 = in.indices[3 * t + 2];
-        const bool ok = (i0 < vertex_count) & (i1 < vertex_count) & (i2 < vertex_count) & (t < in.count);
-        ref[0][t] = in.first_vertex + std::int32_t(ok ? i0 : 0);
-        ref[1][t] = in.first_vertex + std::int32_t(ok ? i1 : 0);
-        ref[2][t] = in.first_vertex + std::int32_t(ok ? i2 : 0);
-        valid[t] = ok ? -1 : 0;
+    for (int i = 0; i < padded; i += kLanes) {
+        Int index[3];
+        load_indices(in.indices + 3 * i, index);
+        Mask ok = (Int::load_aligned(lane_index) + Int(i)) < Int(in.count);
+        for (int k = 0; k < 3; ++k) ok = ok & (index[k] >= zero) & (index[k] < vertex_count);
+        for (int k = 0; k < 3; ++k) (first_vertex + xsimd::select(ok, index[k], zero)).store_aligned(ref[k] + i);
+        xsimd::select(ok, Int(-1), zero).store_aligned(valid + i);
     }
     out.kept = out.scalar = out.clipped = 0;
     int records = 0;
     for (int i = 0; i < padded; i += kLanes) {
+        const Mask valid_lanes = Int::load_aligned(valid + i) != zero;
+        const Int refs[3] = {Int::load_aligned(ref[0] + i), Int::load_aligned(ref[1] + i), Int::load_aligned(ref[2] + i)};
         Corner corner[3];
         for (int k = 0; k < 3; ++k) corner[k] = load_corner(in.screen, ref[k] + i);
         // geometry::classify_triangle over the lanes.
@@ -154,7 +186,7 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         const Mask rejected = ((any_outside & Int(geometry::kNotFinite)) != zero) |
                               ((corner[0].outcode & corner[1].outcode & corner[2].outcode) != zero);
         const Mask crosses = (any_outside & Int(geometry::kClipPlaneBits)) != zero;
-        const Mask live = (Int::load_aligned(valid + i) != zero) & !rejected;
+        const Mask live = valid_lanes & !rejected;
         out.clipped |= lane_bits(live & crosses) << i;
         const Mask accepted = live & !crosses;
         // Positions: any values in lanes not accepted, which are masked off below.
@@ -218,7 +250,6 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
 
         // The kept lanes' records, as setup_triangle() fills them: their 16
         // int32 words (RecordWords) a vector each, turned into one record per lane.
-        const Int ref1 = Int::load_aligned(ref[1] + i), ref2 = Int::load_aligned(ref[2] + i);
         const Int depth1 = xsimd::select(swapped, corner[2].depth, corner[1].depth);
         const Int depth2 = xsimd::select(swapped, corner[1].depth, corner[2].depth);
         // Division is correctly rounded in every ISA, as the scalar 1.0f / float(area) is.
@@ -226,8 +257,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
         const Int words[16] = {x[0], x1, x2, y[0], y1, y2,
                                px_min | (px_max << 16), py_min | (py_max << 16),  // int16 pairs, low half first
                                inv_area, corner[0].depth, depth1, depth2,
-                               Int::load_aligned(ref[0] + i), xsimd::select(swapped, ref2, ref1),
-                               xsimd::select(swapped, ref1, ref2), zero};
+                               refs[0], xsimd::select(swapped, refs[2], refs[1]),
+                               xsimd::select(swapped, refs[1], refs[2]), zero};
         alignas(64) RasterTriangle lane_records[kLanes];
         to_records(words, lane_records);
         for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1)
