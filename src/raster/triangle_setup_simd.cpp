@@ -1,10 +1,11 @@
 // Triangle assembly's common case over vectors of triangles (raster_kernels.hpp),
 // compiled once per ISA. Each lane does for one triangle what
-// assemble_triangles()' scalar path does: the index check, the outcode test and
-// setup_triangle(), the latter in int32: exact for triangles spanning less than
-// 64 pixels, whose coordinate deltas stay below 2^14 so that every product
-// stays below 2^30. Larger triangles, and those that need clipping, are handed
-// back to the scalar code.
+// assemble_triangles()' scalar path does: the index check, the outcode test,
+// face culling and setup_triangle() (pixel centres, or 4× MSAA samples), the
+// latter in int32: exact for triangles spanning less than 64 pixels, whose
+// coordinate deltas stay below 2^14 so that every product stays below 2^30.
+// Larger triangles, and those that need clipping, are handed back to the
+// scalar code.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
