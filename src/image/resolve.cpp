@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "image/resolve_kernels.hpp"
+#include "image/resolve_msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
 namespace tessera::image {
@@ -157,11 +158,56 @@ void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& r
     write_display(isa, coverage, rect, count, shaded.r, packed_clear(clear), image);
 }
 
+namespace {
+
+// The vector loops of resolve_tile_msaa (resolve_msaa_kernels.hpp).
+MsaaResolveRows msaa_rows(const raster::TileSamples& samples, const raster::TileRect& rect,
+                          const shade::RadianceOutputs& shaded, const ClearValues& clear, RenderedImage& image) {
+    MsaaResolveRows rows{};
+    rows.fragment = samples.fragment.data(), rows.side = samples.side;
+    rows.width = rect.width(), rows.height = rect.height();
+    rows.plane[0] = shaded.r, rows.plane[1] = shaded.g, rows.plane[2] = shaded.b;
+    for (int c = 0; c < 3; ++c) rows.clear_radiance[c] = clear.radiance[c];
+    if (!image.radiance.empty()) rows.radiance = &image.radiance[3 * (std::size_t(rect.y0) * image.width + rect.x0)];
+    rows.radiance_stride = 3 * std::size_t(image.width);
+    rows.encoded = shaded.r, rows.clear_display = packed_clear(clear);
+    rows.display = &image.display[3 * (std::size_t(rect.y0) * image.width + rect.x0)];
+    rows.display_stride = 3 * std::size_t(image.width);
+    return rows;
+}
+
+void resolve_msaa_radiance(simd::Isa isa, const MsaaResolveRows& rows) {
+    switch (isa) {
+        case simd::Isa::sse4: return resolve_msaa_radiance_rows_sse4(rows);
+        case simd::Isa::avx2: return resolve_msaa_radiance_rows_avx2(rows);
+        case simd::Isa::avx512: return resolve_msaa_radiance_rows_avx512(rows);
+        case simd::Isa::scalar: break;
+    }
+}
+
+void resolve_msaa_display(simd::Isa isa, const MsaaResolveRows& rows) {
+    switch (isa) {
+        case simd::Isa::sse4: return resolve_msaa_display_rows_sse4(rows);
+        case simd::Isa::avx2: return resolve_msaa_display_rows_avx2(rows);
+        case simd::Isa::avx512: return resolve_msaa_display_rows_avx512(rows);
+        case simd::Isa::scalar: break;
+    }
+}
+
+}  // namespace
+
 void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect, std::size_t count,
                        const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                        RenderedImage& image) {
     constexpr int n = raster::kMsaaSamples;
     static_assert(n == 4, "the averages below add four samples in pairs");
+    if (isa != simd::Isa::scalar) {
+        const MsaaResolveRows rows = msaa_rows(samples, rect, shaded, clear, image);
+        if (!image.radiance.empty()) resolve_msaa_radiance(isa, rows);
+        if (count == 0) return clear_tile_display(rect, clear, image);
+        encode_display_unorm8(isa, count, shaded.r, shaded.g, shaded.b);  // shaded.r becomes `encoded`
+        return resolve_msaa_display(isa, rows);
+    }
     if (!image.radiance.empty()) for (int y = 0; y < rect.height(); ++y) {
         for (int x = 0; x < rect.width(); ++x) {
             const std::int32_t* fragment = &samples.fragment[std::size_t(n) * (std::size_t(y) * samples.side + x)];

@@ -1,7 +1,13 @@
 #include "raster/msaa.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
 
+#include <emmintrin.h>
+
+#include "raster/msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
 namespace tessera::raster {
@@ -9,8 +15,8 @@ namespace tessera::raster {
 void TileSamples::reset(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;
     side = tile_side;
-    depth.assign(n, 1.0f);
-    triangle.resize(n);
+    depth.assign(n + kMsaaKernelOverreach, 1.0f);
+    triangle.resize(n + kMsaaKernelOverreach);
     fragment.resize(n);
 }
 
@@ -18,6 +24,76 @@ void TileFragments::reserve(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
     x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n);
     count = 0;
+}
+
+namespace {
+
+// What list_fragments() does with a pixel, by which samples are covered (bits
+// 0-3) and which pairs of samples have the same triangle id (bits 4-9: 01, 02,
+// 03, 12, 13, 23), worked out once by the reference loop's rule: a covered
+// sample takes the fragment of the first earlier covered sample with its
+// triangle, else a new one.
+struct PixelPattern {
+    std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
+    std::uint32_t first_samples;          // bit s: sample s starts a fragment
+};
+struct PixelPatterns {
+    PixelPattern pattern[1 << 10];
+    constexpr PixelPatterns() : pattern{} {
+        constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
+        for (int key = 0; key < (1 << 10); ++key) {
+            PixelPattern& p = pattern[key];
+            p.first_samples = 0;
+            int fragments = 0;
+            for (int s = 0; s < kMsaaSamples; ++s) {
+                p.fragment[s] = -1;
+                if (!((key >> s) & 1)) continue;
+                for (int t = 0; t < s && p.fragment[s] < 0; ++t)
+                    if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
+                if (p.fragment[s] < 0) p.fragment[s] = fragments++, p.first_samples |= 1u << s;
+            }
+        }
+    }
+};
+constexpr PixelPatterns kPixelPatterns;
+
+}  // namespace
+
+void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out) {
+    static_assert(kMsaaSamples == 4, "a pixel's samples are one SSE vector");
+    const __m128 one = _mm_set1_ps(1.0f);
+    std::size_t count = 0;
+    for (int y = 0; y < rect.height(); ++y) {
+        for (int x = 0; x < rect.width(); ++x) {
+            const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * samples.side + x);
+            __m128i* fragment = reinterpret_cast<__m128i*>(&samples.fragment[first]);
+            const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), one);
+            const int covered_bits = _mm_movemask_ps(covered);
+            if (covered_bits == 0) {  // background (no triangle ids to read)
+                _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
+                continue;
+            }
+            const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
+            // Pairs 01 02 03 12, then 13 23.
+            const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
+            const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
+            const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
+            const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
+            const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
+                             (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
+            const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
+            // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
+            const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
+            _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
+            for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
+                const int s = std::countr_zero(firsts);
+                out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
+                out.triangle[count] = samples.triangle[first + s];
+                ++count;
+            }
+        }
+    }
+    out.count = count;
 }
 
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
@@ -74,6 +150,122 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
         }
         for (EdgeStepper& edge : e) edge.row += edge.step_y;
     }
+}
+
+namespace {
+
+// Whether every value of edge e the kernel meets over a width × height block
+// fits in int32: the block's samples (within 0.375 px of the centres), lanes
+// of the last vector of a row up to 3 pixels past its end, the steps taken
+// after the last vector and the last row, with margin.
+bool msaa_edge_fits_int32(const EdgeStepper& e, int width, int height) {
+    const std::int64_t reach = std::llabs(e.row) + std::llabs(e.step_x) * (width + 8) + std::llabs(e.step_y) * (height + 1);
+    return reach < (std::int64_t(1) << 31) - 1;
+}
+
+// Whether every corner lies within kTinySpan of the others in x and in y
+// (as tile_rasterizer.cpp's test, branch-free): then every edge value the
+// kernel meets over the triangle's box is below 2^26.
+[[gnu::always_inline]] inline bool tiny(const RasterTriangle& t) {
+    const auto near = [](std::int32_t a, std::int32_t b) -> unsigned {
+        return std::uint32_t(a - b + (kTinySpan - 1)) < std::uint32_t(2 * kTinySpan - 1);
+    };
+    return (near(t.x[0], t.x[1]) & near(t.x[1], t.x[2]) & near(t.x[2], t.x[0]) & near(t.y[0], t.y[1]) &
+            near(t.y[1], t.y[2]) & near(t.y[2], t.y[0])) != 0;
+}
+
+// The extremes of a biased edge over the samples of a width × height block:
+// it is affine, so they lie at the block's corner pixels, at their extreme
+// sample offsets.
+struct EdgeRange {
+    std::int64_t min, max;
+};
+EdgeRange sample_range(const EdgeStepper& e, int width, int height) {
+    const std::int64_t across = e.step_x * (width - 1), down = e.step_y * (height - 1);
+    std::int64_t offset_min = INT64_MAX, offset_max = INT64_MIN;
+    for (int s = 0; s < kMsaaSamples; ++s) {
+        const std::int64_t offset = (e.step_x / kSubpixelScale) * kSampleOffsetX[s] + (e.step_y / kSubpixelScale) * kSampleOffsetY[s];
+        offset_min = std::min(offset_min, offset), offset_max = std::max(offset_max, offset);
+    }
+    return {e.row + std::min<std::int64_t>(across, 0) + std::min<std::int64_t>(down, 0) + offset_min,
+            e.row + std::max<std::int64_t>(across, 0) + std::max<std::int64_t>(down, 0) + offset_max};
+}
+
+// Other triangles: edges set up in int64, narrowed to int32 where they fit;
+// where not, barycentric numerators in double and coverage in int32 for the
+// edges that cross the box; the scalar loop when even those leave int32.
+[[gnu::noinline]] void rasterize_general_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id,
+                                              const TileRect& tile, int x_begin, int x_end, int y_begin, int y_end,
+                                              const SampleView& view, TileSamples& samples, RasterCounters& counters) {
+    const std::int64_t px = std::int64_t(x_begin) * kSubpixelScale + kSubpixelScale / 2;
+    const std::int64_t py = std::int64_t(y_begin) * kSubpixelScale + kSubpixelScale / 2;
+    const EdgeStepper e[3] = {EdgeStepper(t.x[1], t.y[1], t.x[2], t.y[2], px, py),
+                              EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
+                              EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
+    const int width = x_end - x_begin, height = y_end - y_begin;
+    MsaaBlock32 block;
+    bool fits = true;
+    for (int k = 0; k < 3; ++k) fits = fits && msaa_edge_fits_int32(e[k], width, height);
+    MsaaWideWeights weights;
+    for (int k = 0; k < 3; ++k) {
+        block.bias[k] = std::int32_t(e[k].bias);
+        if (fits) {
+            block.row[k] = std::int32_t(e[k].row);
+            block.step_x[k] = std::int32_t(e[k].step_x);
+            block.step_y[k] = std::int32_t(e[k].step_y);
+            continue;
+        }
+        // Edge values past int32 (large triangles): an edge >= 0 at every
+        // sample of the box passes everywhere, tested as 0; the others must fit.
+        const EdgeRange range = sample_range(e[k], width, height);
+        if (range.max < 0) return;  // no sample of the box is inside
+        const bool passes = range.min >= 0;
+        if (!passes && !msaa_edge_fits_int32(e[k], width, height))
+            return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
+        block.row[k] = passes ? 0 : std::int32_t(e[k].row);
+        block.step_x[k] = passes ? 0 : std::int32_t(e[k].step_x);
+        block.step_y[k] = passes ? 0 : std::int32_t(e[k].step_y);
+    }
+    if (!fits)
+        for (int k = 0; k < 2; ++k) {
+            const EdgeStepper& weight = e[k + 1];
+            weights.row[k] = double(weight.row - weight.bias);
+            weights.step_x[k] = double(weight.step_x);
+            weights.step_y[k] = double(weight.step_y);
+        }
+    block.x_begin = x_begin - tile.x0, block.x_end = x_end - tile.x0;
+    block.y_begin = y_begin - tile.y0, block.y_end = y_end - tile.y0;
+    block.inv_area = t.inv_area;
+    block.d0 = t.depth[0], block.d10 = t.depth[1] - t.depth[0], block.d20 = t.depth[2] - t.depth[0];
+    block.triangle_id = triangle_id;
+    switch (isa) {
+        case simd::Isa::sse4: return rasterize_msaa_block_sse4(block, fits ? nullptr : &weights, view, counters);
+        case simd::Isa::avx2: return rasterize_msaa_block_avx2(block, fits ? nullptr : &weights, view, counters);
+        case simd::Isa::avx512: return rasterize_msaa_block_avx512(block, fits ? nullptr : &weights, view, counters);
+        case simd::Isa::scalar: break;
+    }
+}
+
+}  // namespace
+
+void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters) {
+    if (isa == simd::Isa::scalar) return rasterize_triangle_msaa(t, triangle_id, tile, samples, counters);
+    const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
+    const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
+    if (x_begin >= x_end || y_begin >= y_end) return;
+    const SampleView view{samples.depth.data(), samples.triangle.data(), samples.side};
+    // Tiny triangles (most of a finely tessellated mesh) set up in the kernel, in int32.
+    if (tiny(t)) {
+        const TinyBox box{x_begin, x_end, y_begin, y_end, tile.x0, tile.y0};
+        switch (isa) {
+            case simd::Isa::sse4: return rasterize_msaa_tiny_sse4(t, triangle_id, box, view, counters);
+            case simd::Isa::avx2: return rasterize_msaa_tiny_avx2(t, triangle_id, box, view, counters);
+            case simd::Isa::avx512: return rasterize_msaa_tiny_avx512(t, triangle_id, box, view, counters);
+            case simd::Isa::scalar: break;
+        }
+    }
+    rasterize_general_msaa(isa, t, triangle_id, tile, x_begin, x_end, y_begin, y_end, view, samples, counters);
 }
 
 }  // namespace tessera::raster

@@ -7,22 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "raster/msaa_pattern.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"
 
 namespace tessera::raster {
-
-inline constexpr int kMsaaSamples = 4;
-
-// GL's 4× pattern, as llvmpipe reports it (GL_SAMPLE_POSITION) in window space,
-// y up from the pixel's bottom: (0.375, 0.125), (0.875, 0.375), (0.125, 0.625),
-// (0.625, 0.875) — the standard numbers of D3D and Vulkan, which measure y down
-// instead. In image space (y down from the pixel's top) they are (0.375, 0.875),
-// (0.875, 0.625), (0.125, 0.375), (0.625, 0.125); as offsets from the pixel
-// centre in 24.8 fixed point, exact multiples of 32.
-inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetX = {-32, 96, -96, 32};
-inline constexpr std::array<std::int32_t, kMsaaSamples> kSampleOffsetY = {96, 32, -32, -96};
 
 // Per-sample results of rasterizing one tile: sample s of tile pixel p at
 // [kMsaaSamples · p + s]. Owned by a worker and reused from tile to tile.
@@ -32,7 +22,9 @@ struct TileSamples {
     std::vector<std::uint32_t> triangle;  // its triangle id, where depth < 1
     // Which of the tile's fragments (TileFragments) colours the sample; -1: background.
     std::vector<std::int32_t> fragment;
-    void reset(int tile_side);            // clears depth to 1 (allocates only when the side grows)
+    // Clears depth to 1 (allocates only when the side grows). depth and
+    // triangle are padded past the last pixel for the vector kernels.
+    void reset(int tile_side);
 };
 
 // The pixels' fragments: one per pixel and distinct triangle among its
@@ -56,6 +48,12 @@ struct TileFragments {
 // depth test; discarding drops all the triangle's samples in that pixel.
 void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                              TileSamples& samples, RasterCounters& counters, const FragmentTest* test = nullptr);
+// The same with the ISA's vector kernel (msaa_kernels.hpp) where every edge
+// value fits in int32, the scalar loop otherwise and for Isa::scalar:
+// bit-identical samples and counters either way. No fragment test: with one,
+// call the scalar loop above (its test runs per pixel, in sample order).
+void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                             TileSamples& samples, RasterCounters& counters);
 
 // λ1, λ2 of a set-up triangle at a point given in fixed point (image space).
 inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
@@ -67,10 +65,29 @@ inline std::array<float, 2> screen_barycentrics(const RasterTriangle& t, std::in
 // Whether a fixed-point point is inside a set-up triangle, by the top-left rule.
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 
+// The first half of collect_fragments(): sets samples.fragment and lists the
+// fragments' pixels and triangles (x, y, triangle, count), a pixel at a time
+// with SSE2 and a table, without the branches of the loop below.
+void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
+
 // Lists the fragments of a width × height tile from its samples and sets
 // samples.fragment. triangle_of(id) gives the RasterTriangle of a triangle id.
 template <class TriangleOf>
 void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
+    list_fragments(rect, samples, out);
+    // Each shaded at its pixel's centre.
+    for (std::size_t k = 0; k < out.count; ++k) {
+        const auto [l1, l2] =
+            screen_barycentrics(triangle_of(out.triangle[k]),
+                                std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
+                                std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
+        out.lambda1[k] = l1, out.lambda2[k] = l2;
+    }
+}
+
+// The plain loop collect_fragments() must match (tests compare them).
+template <class TriangleOf>
+void collect_fragments_reference(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
     out.count = 0;
     for (int y = 0; y < rect.height(); ++y) {
         for (int x = 0; x < rect.width(); ++x) {

@@ -532,7 +532,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
     const bool drawn = rasterize_bins(tile, s, [&] { s.samples.reset(grid.tile_size); },
                                       [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
                                           if (!alpha_tested)
-                                              return raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters);
+                                              return raster::rasterize_triangle_msaa(isa, t, id, rect, s.samples, s.counters);
                                           const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
                                           const raster::FragmentTest test{shade::alpha_mask_keep, &mask};
                                           raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters, &test);

@@ -42,43 +42,35 @@
 #include <cmath>
 #include <limits>
 #include <set>
-#include <sstream>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "scene/animation_eval.hpp"
 #include "scene/animation_file.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace tessera {
 namespace {
 
 constexpr std::int64_t kMaxFrames = 1000000;
 
-template <typename T>
-std::string to_text(const T& value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
 // The [animation] table's reader: each check that fails throws with the
-// offending node's position, as scene_file.cpp's reader does.
-class AnimationReader {
+// offending node's position (toml_reader.hpp).
+class AnimationReader : TomlReader {
 public:
-    AnimationReader(const std::string& source, Scene& scene) : source_(source), scene_(scene) {}
+    AnimationReader(const std::string& source, Scene& scene) : TomlReader(source), scene_(scene) {}
 
     std::shared_ptr<const Animation> read(const toml::table& root, const toml::node& node) {
         const toml::table& table = table_of(node, "animation");
         check_keys(table, "animation", {"frames", "fps", "orbit", "camera", "objects", "lights"});
         auto animation = std::make_shared<Animation>();
         const toml::node& frames = require(table, "frames", "animation");
-        const auto* count = frames.as_integer();
-        if (count == nullptr) fail_type(frames, "an integer", "animation.frames");
-        if (count->get() < 1 || count->get() > kMaxFrames)
+        const std::int64_t count = read_integer(frames, "animation.frames");
+        if (count < 1 || count > kMaxFrames)
             fail_at(frames.source(), "expected 'animation.frames' to be in 1.." + std::to_string(kMaxFrames) +
-                                         ", got " + std::to_string(count->get()));
-        animation->frame_count = int(count->get());
+                                         ", got " + std::to_string(count));
+        animation->frame_count = int(count);
         if (const toml::node* n = table.get("fps")) {
             animation->fps = read_number(*n, "animation.fps");
             if (!(animation->fps > 0.0)) fail_at(n->source(), "expected 'animation.fps' to be > 0, got " + to_text(animation->fps));
@@ -97,85 +89,6 @@ public:
     }
 
 private:
-    [[noreturn]] void fail_at(const toml::source_region& where, const std::string& message) const {
-        if (where.begin.line == 0) throw SceneError(source_ + ": " + message);
-        throw SceneError(source_ + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) +
-                         ": " + message);
-    }
-
-    [[noreturn]] void fail_type(const toml::node& node, std::string_view expected, const std::string& name) const {
-        fail_at(node.source(), "expected " + std::string(expected) + " for '" + name + "'");
-    }
-
-    static std::string child(const std::string& parent, std::string_view key) { return parent + "." + std::string(key); }
-
-    void check_keys(const toml::table& table, const std::string& name, std::initializer_list<std::string_view> valid) const {
-        for (auto&& [key, node] : table) {
-            bool known = false;
-            for (const std::string_view v : valid) known = known || key.str() == v;
-            if (known) continue;
-            std::string list;
-            for (const std::string_view v : valid) list += (list.empty() ? "" : ", ") + std::string(v);
-            fail_at(key.source().begin.line != 0 ? key.source() : node.source(),
-                    "unknown key '" + std::string(key.str()) + "' in '" + name + "'; valid keys: " + list);
-        }
-    }
-
-    const toml::node& require(const toml::table& table, std::string_view key, const std::string& name) const {
-        const toml::node* node = table.get(key);
-        if (node == nullptr) fail_at(table.source(), "missing required key '" + child(name, key) + "'");
-        return *node;
-    }
-
-    const toml::table& table_of(const toml::node& node, const std::string& name) const {
-        const toml::table* table = node.as_table();
-        if (table == nullptr) fail_type(node, "a table", name);
-        return *table;
-    }
-
-    const toml::array& array_of(const toml::node& node, const std::string& name, std::string_view what) const {
-        const toml::array* array = node.as_array();
-        if (array == nullptr) fail_type(node, what, name);
-        return *array;
-    }
-
-    double read_number(const toml::node& node, const std::string& name) const {
-        double value = 0.0;
-        if (const auto* integer = node.as_integer()) {
-            value = double(integer->get());
-        } else if (const auto* floating = node.as_floating_point()) {
-            value = floating->get();
-        } else {
-            fail_type(node, "a number", name);
-        }
-        if (!std::isfinite(value) || !std::isfinite(float(value)))
-            fail_at(node.source(), "expected a finite number for '" + name + "', got " + to_text(value));
-        return value;
-    }
-
-    glm::vec3 read_vec3(const toml::node& node, const std::string& name, double min = -std::numeric_limits<double>::infinity(),
-                        double max = std::numeric_limits<double>::infinity()) const {
-        const toml::array* array = node.as_array();
-        if (array == nullptr || array->size() != 3) fail_type(node, "an array of 3 numbers", name);
-        glm::vec3 result{};
-        for (int i = 0; i < 3; ++i) {
-            const toml::node& element = *array->get(std::size_t(i));
-            const double value = read_number(element, name + "[" + std::to_string(i) + "]");
-            if (value < min || value > max)
-                fail_at(element.source(), "expected '" + name + "[" + std::to_string(i) + "]' to be in [" + to_text(min) +
-                                              ", " + to_text(max) + "], got " + to_text(value));
-            result[i] = float(value);
-        }
-        return result;
-    }
-
-    glm::vec3 read_scale(const toml::node& node, const std::string& name) const {
-        const glm::vec3 scale = node.is_number() ? glm::vec3(float(read_number(node, name))) : read_vec3(node, name);
-        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
-            fail_at(node.source(), "expected every component of '" + name + "' to be non-zero");
-        return scale;
-    }
-
     Interpolation read_interpolation(const toml::table& table, const std::string& name, Interpolation fallback) const {
         const toml::node* node = table.get("interpolation");
         if (node == nullptr) return fallback;
@@ -273,9 +186,7 @@ private:
     std::uint32_t read_index(const toml::table& table, std::string_view key, const std::string& name, std::size_t count,
                              std::string_view what, std::set<std::int64_t>& used) const {
         const toml::node& node = require(table, key, name);
-        const auto* integer = node.as_integer();
-        if (integer == nullptr) fail_type(node, "an integer", child(name, key));
-        const std::int64_t index = integer->get();
+        const std::int64_t index = read_integer(node, child(name, key));
         if (index < 0 || std::uint64_t(index) >= count)
             fail_at(node.source(), "expected '" + child(name, key) + "' to be the index of one of the " +
                                        std::to_string(count) + " " + std::string(what) + " (0.." +
@@ -311,7 +222,7 @@ private:
                     add_key(track.rotate_degrees, frame, read_vec3(*n, child(key_name, "rotate")));
                 if (const toml::node* n = key.get("scale")) add_key(track.scale, frame, read_scale(*n, child(key_name, "scale")));
                 if (const toml::node* n = key.get("color"))
-                    add_key(track.color, frame, read_vec3(*n, child(key_name, "color"), 0.0, 1.0));
+                    add_key(track.color, frame, read_vec3(*n, child(key_name, "color"), kUnitInterval));
             });
             if (!track.color.empty()) {
                 // Its own material: a named material may be shared with objects that keep their colour.
@@ -345,7 +256,7 @@ private:
                     add_key(track.position, frame, read_vec3(*n, child(key_name, "position")));
                 }
                 if (const toml::node* n = key.get("color"))
-                    add_key(track.color, frame, read_vec3(*n, child(key_name, "color"), 0.0));
+                    add_key(track.color, frame, read_vec3(*n, child(key_name, "color"), kNonNegative));
             });
             animation.lights.push_back(std::move(track));
         }
@@ -367,7 +278,6 @@ private:
         }
     }
 
-    const std::string& source_;
     Scene& scene_;
 };
 

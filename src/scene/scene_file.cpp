@@ -121,6 +121,7 @@
 #include "scene/gltf_animation.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
+#include "scene/toml_reader.hpp"
 #include "tessera/scene.hpp"
 #include "texture/texture.hpp"
 
@@ -130,58 +131,17 @@ namespace {
 constexpr std::string_view kSupportedMeshes = "sphere, plane, cube";
 constexpr std::string_view kSupportedLightTypes = "point, directional, spot";
 
-std::string_view type_name(toml::node_type type) {
-    switch (type) {
-        case toml::node_type::table: return "table";
-        case toml::node_type::array: return "array";
-        case toml::node_type::string: return "string";
-        case toml::node_type::integer: return "integer";
-        case toml::node_type::floating_point: return "floating-point";
-        case toml::node_type::boolean: return "boolean";
-        case toml::node_type::date: return "date";
-        case toml::node_type::time: return "time";
-        case toml::node_type::date_time: return "date-time";
-        case toml::node_type::none: break;
-    }
-    return "nothing";
-}
-
-template <typename T>
-std::string to_text(const T& value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-std::string join(std::initializer_list<std::string_view> words) {
-    std::string text;
-    for (const std::string_view word : words) {
-        if (!text.empty()) text += ", ";
-        text += word;
-    }
-    return text;
-}
-
-// An inclusive range a number must lie in, with its wording for messages.
-struct Bounds {
-    double min;
-    double max;
-    std::string_view text;
-};
-constexpr Bounds kUnitInterval{0.0, 1.0, "in [0, 1]"};
-constexpr Bounds kNonNegative{0.0, std::numeric_limits<double>::infinity(), ">= 0"};
-
 // Walks one parsed document; every check that fails throws with the document's
 // name and the offending node's position.
-class SceneReader {
+class SceneReader : TomlReader {
 public:
     explicit SceneReader(std::string source, ModelCache* models = nullptr)
-        : source_(std::move(source)), base_dir_(std::filesystem::path(source_).parent_path()), models_(models) {}
+        : TomlReader(std::move(source)), base_dir_(std::filesystem::path(this->source()).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
         check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models", "animation"});
         Scene scene;
-        scene.source = source_;
+        scene.source = source();
         if (const toml::node* output = root.get("output")) {
             read_output(table_of(*output, "output"), scene);
         }
@@ -195,127 +155,21 @@ public:
         scene.textures = std::move(textures_);
         if (const toml::node* models = root.get("models")) read_models(*models, scene);
         // [animation] (src/scene/animation_file.cpp): the scene as loaded is its frame 0.
-        scene.animation = read_animation(root, source_, scene);
+        scene.animation = read_animation(root, source(), scene);
         set_scene_frame(scene, 0);
         if (!scene.animation) pose_models_at_frame(scene, 0, 24.0);  // models playing from their start time
         return scene;
     }
 
 private:
-    [[noreturn]] void fail(const std::string& message) const {
-        throw SceneError(source_ + ": " + message);
-    }
-
-    [[noreturn]] void fail_at(const toml::source_region& where, const std::string& message) const {
-        // Tables toml++ creates implicitly (e.g. [materials] for [materials.a]) have no position.
-        if (where.begin.line == 0) fail(message);
-        throw SceneError(source_ + ":" + std::to_string(where.begin.line) + ":" +
-                         std::to_string(where.begin.column) + ": " + message);
-    }
-
-    [[noreturn]] void fail_type(const toml::node& node, std::string_view expected,
-                                const std::string& name) const {
-        fail_at(node.source(), "expected " + std::string(expected) + " for '" + name + "', got " +
-                                   std::string(type_name(node.type())));
-    }
-
-    static std::string child(const std::string& parent, std::string_view key) {
-        return parent.empty() ? std::string(key) : parent + "." + std::string(key);
-    }
-
-    void check_keys(const toml::table& table, const std::string& name,
-                    std::initializer_list<std::string_view> valid) const {
-        for (auto&& [key, node] : table) {
-            bool known = false;
-            for (const std::string_view v : valid) known = known || key.str() == v;
-            if (known) continue;
-            const toml::source_region& where =
-                key.source().begin.line != 0 ? key.source() : node.source();
-            const std::string place = name.empty() ? "at top level" : "in '" + name + "'";
-            fail_at(where, "unknown key '" + std::string(key.str()) + "' " + place +
-                               "; valid keys: " + join(valid));
-        }
-    }
-
-    const toml::node& require(const toml::table& table, std::string_view key,
-                              const std::string& table_name) const {
-        const toml::node* node = table.get(key);
-        if (node == nullptr) {
-            fail_at(table.source(), "missing required key '" + child(table_name, key) + "'");
-        }
-        return *node;
-    }
-
-    const toml::table& table_of(const toml::node& node, const std::string& name) const {
-        const toml::table* table = node.as_table();
-        if (table == nullptr) fail_type(node, "a table", name);
-        return *table;
-    }
-
-    const toml::array& array_of_tables(const toml::node& node, const std::string& name) const {
-        const toml::array* array = node.as_array();
-        if (array == nullptr) fail_type(node, "an array of tables", name);
-        return *array;
-    }
-
-    double read_number(const toml::node& node, const std::string& name) const {
-        double value = 0.0;
-        if (const auto* integer = node.as_integer()) {
-            value = static_cast<double>(integer->get());
-        } else if (const auto* floating = node.as_floating_point()) {
-            value = floating->get();
-        } else {
-            fail_type(node, "a number", name);
-        }
-        // Checked as float too: 1e300 is a finite double but not a finite float.
-        if (!std::isfinite(value) || !std::isfinite(static_cast<float>(value))) {
-            fail_at(node.source(), "expected a finite number for '" + name + "', got " + to_text(value));
-        }
-        return value;
-    }
-
-    float read_float(const toml::node& node, const std::string& name,
-                     std::optional<Bounds> bounds = std::nullopt) const {
-        const double value = read_number(node, name);
-        if (bounds && !(value >= bounds->min && value <= bounds->max)) {
-            fail_at(node.source(), "expected '" + name + "' to be " + std::string(bounds->text) +
-                                       ", got " + to_text(value));
-        }
-        return static_cast<float>(value);
-    }
-
-    glm::vec3 read_vec3(const toml::node& node, const std::string& name,
-                        std::optional<Bounds> bounds = std::nullopt) const {
-        const toml::array* array = node.as_array();
-        if (array == nullptr) fail_type(node, "an array of 3 numbers", name);
-        if (array->size() != 3) {
-            fail_at(node.source(), "expected an array of 3 numbers for '" + name + "', got " +
-                                       std::to_string(array->size()) + " elements");
-        }
-        glm::vec3 result{};
-        for (int i = 0; i < 3; ++i) {
-            result[i] = read_float(*array->get(static_cast<std::size_t>(i)),
-                                   name + "[" + std::to_string(i) + "]", bounds);
-        }
-        return result;
-    }
-
     int read_dimension(const toml::node& node, const std::string& name) const {
-        const auto* integer = node.as_integer();
-        if (integer == nullptr) fail_type(node, "an integer", name);
-        const std::int64_t value = integer->get();
+        const std::int64_t value = read_integer(node, name);
         if (value < 1 || value > kMaxImageDimension) {
             fail_at(node.source(), "expected '" + name + "' to be in 1.." +
                                        std::to_string(kMaxImageDimension) + ", got " +
                                        std::to_string(value));
         }
         return static_cast<int>(value);
-    }
-
-    std::string read_string(const toml::node& node, const std::string& name) const {
-        const auto* string = node.as_string();
-        if (string == nullptr) fail_type(node, "a string", name);
-        return string->get();
     }
 
     void read_output(const toml::table& output, Scene& scene) const {
@@ -335,11 +189,10 @@ private:
             scene.clear_color = read_vec3(*n, "output.clear_color", kUnitInterval);
         }
         if (const toml::node* n = output.get("msaa")) {
-            const auto* integer = n->as_integer();
-            if (integer == nullptr) fail_type(*n, "an integer", "output.msaa");
-            if (integer->get() != 1 && integer->get() != 4)
-                fail_at(n->source(), "expected 'output.msaa' to be 1 or 4, got " + std::to_string(integer->get()));
-            scene.msaa = static_cast<int>(integer->get());
+            const std::int64_t msaa = read_integer(*n, "output.msaa");
+            if (msaa != 1 && msaa != 4)
+                fail_at(n->source(), "expected 'output.msaa' to be 1 or 4, got " + std::to_string(msaa));
+            scene.msaa = static_cast<int>(msaa);
         }
     }
 
@@ -422,7 +275,7 @@ private:
     }
 
     void read_lights(const toml::node& node, Scene& scene) const {
-        const toml::array& lights = array_of_tables(node, "lights");
+        const toml::array& lights = array_of(node, "lights");
         for (std::size_t i = 0; i < lights.size(); ++i) {
             const std::string name = "lights[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*lights.get(i), name);
@@ -547,11 +400,7 @@ private:
         if (const toml::node* n = table.get("normal_scale")) {
             material.normal_scale = read_float(*n, child(name, "normal_scale"));
         }
-        if (const toml::node* n = table.get("double_sided")) {
-            const auto* flag = n->as_boolean();
-            if (flag == nullptr) fail_type(*n, "a boolean", child(name, "double_sided"));
-            material.double_sided = flag->get();
-        }
+        if (const toml::node* n = table.get("double_sided")) material.double_sided = read_bool(*n, child(name, "double_sided"));
         if (const toml::node* n = table.get("alpha_mode")) {
             const std::string text = read_string(*n, child(name, "alpha_mode"));
             if (text == "mask") {
@@ -573,7 +422,7 @@ private:
     // once per path and colour space.
     std::int32_t texture_index(const toml::node& node, const std::string& name, texture::ColorSpace color_space) {
         const std::filesystem::path path =
-            std::filesystem::path(source_).parent_path() / std::filesystem::path(read_string(node, name));
+            std::filesystem::path(source()).parent_path() / std::filesystem::path(read_string(node, name));
         const std::string key = path.lexically_normal().string() + (color_space == texture::ColorSpace::srgb ? "|srgb" : "");
         if (const auto loaded = texture_indices_.find(key); loaded != texture_indices_.end()) return loaded->second;
         try {
@@ -651,23 +500,8 @@ private:
         return index;
     }
 
-    glm::vec3 read_scale(const toml::node& node, const std::string& name) const {
-        glm::vec3 scale{1.0f};
-        if (node.is_number()) {
-            scale = glm::vec3(read_float(node, name));
-        } else if (node.is_array()) {
-            scale = read_vec3(node, name);
-        } else {
-            fail_type(node, "a number or an array of 3 numbers", name);
-        }
-        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f) {
-            fail_at(node.source(), "expected every component of '" + name + "' to be non-zero");
-        }
-        return scale;
-    }
-
     void read_objects(const toml::node& node, Scene& scene) {
-        const toml::array& objects = array_of_tables(node, "objects");
+        const toml::array& objects = array_of(node, "objects");
         for (std::size_t i = 0; i < objects.size(); ++i) {
             const std::string name = "objects[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*objects.get(i), name);
@@ -701,7 +535,7 @@ private:
     }
 
     void read_models(const toml::node& node, Scene& scene) const {
-        const toml::array& models = array_of_tables(node, "models");
+        const toml::array& models = array_of(node, "models");
         for (std::size_t i = 0; i < models.size(); ++i) {
             const std::string name = "models[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*models.get(i), name);
@@ -714,11 +548,7 @@ private:
                                                 file.string() + "'");
             }
             bool with_lights = true;
-            if (const toml::node* n = table.get("lights")) {
-                const auto* flag = n->as_boolean();
-                if (flag == nullptr) fail_type(*n, "a boolean", child(name, "lights"));
-                with_lights = flag->get();
-            }
+            if (const toml::node* n = table.get("lights")) with_lights = read_bool(*n, child(name, "lights"));
             const glm::mat4 placement = read_placement(table, name);
             std::shared_ptr<const GltfContent> content;
             try {
@@ -772,14 +602,9 @@ private:
         }
         if (const toml::node* n = table.get("animation_start")) model.start_seconds = read_number(*n, child(name, "animation_start"));
         if (const toml::node* n = table.get("animation_speed")) model.speed = read_number(*n, child(name, "animation_speed"));
-        if (const toml::node* n = table.get("animation_loop")) {
-            const auto* flag = n->as_boolean();
-            if (flag == nullptr) fail_type(*n, "a boolean", child(name, "animation_loop"));
-            model.loop = flag->get();
-        }
+        if (const toml::node* n = table.get("animation_loop")) model.loop = read_bool(*n, child(name, "animation_loop"));
     }
 
-    std::string source_;
     std::filesystem::path base_dir_;  // the scene file's folder: [[models]] files are relative to it
     std::map<std::string, Material> named_materials_;
     std::map<std::string, std::uint32_t> used_materials_;  // name -> index in Scene::materials

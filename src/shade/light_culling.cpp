@@ -53,18 +53,28 @@ void select_reaching(const ShadingLights&, const LightSelection& from, const Wor
         // far_sq >= gap_sq: kReachesAll comes only with 1.
         verdict[k] = std::uint32_t(gap_sq <= reach_sq[k]) | (far_sq <= reach_sq[k] ? kReachesAll : 0u);
     }
-    out.index.clear();
-    for (auto* column : {&out.x, &out.y, &out.z, &out.reach_sq}) column->clear();
-    for (std::size_t k = 0; k < n; ++k) {
-        if (k == from.spot_begin) out.spot_begin = out.count();
-        if (k == from.directional_begin) out.directional_begin = out.count();
-        if (verdict[k] == 0) continue;
-        out.index.push_back((from.index[k] & kLightIndexMask) | (verdict[k] & kReachesAll));
-        out.x.push_back(x[k]), out.y.push_back(y[k]), out.z.push_back(z[k]), out.reach_sq.push_back(reach_sq[k]);
-    }
-    // Groups that begin at the very end were never reached in the loop.
-    if (from.spot_begin == n) out.spot_begin = out.count();
-    if (from.directional_begin == n) out.directional_begin = out.count();
+    // Then the kept lights, compacted without branches: every entry is written
+    // and the count advances only past kept ones (a push_back per light cost
+    // ~60 instructions, more than the test).
+    for (auto* column : {&out.x, &out.y, &out.z, &out.reach_sq}) column->resize(n);
+    out.index.resize(n);
+    std::uint32_t* index = out.index.data();
+    float *out_x = out.x.data(), *out_y = out.y.data(), *out_z = out.z.data(), *out_reach_sq = out.reach_sq.data();
+    std::size_t kept = 0;
+    const auto compact = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            index[kept] = (from.index[k] & kLightIndexMask) | (verdict[k] & kReachesAll);
+            out_x[kept] = x[k], out_y[kept] = y[k], out_z[kept] = z[k], out_reach_sq[kept] = reach_sq[k];
+            kept += verdict[k] != 0;
+        }
+    };
+    compact(0, from.spot_begin);
+    out.spot_begin = kept;
+    compact(from.spot_begin, from.directional_begin);
+    out.directional_begin = kept;
+    compact(from.directional_begin, n);
+    for (auto* column : {&out.x, &out.y, &out.z, &out.reach_sq}) column->resize(kept);
+    out.index.resize(kept);
 }
 
 void LightCullScratch::reserve(std::size_t light_count) {

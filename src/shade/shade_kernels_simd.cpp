@@ -4,12 +4,30 @@
 // copy's entry points (shade_fragments_avx2, ...). Everything else lives in an
 // anonymous namespace so the three copies never meet at link time.
 //
-// Same terms, same names as the reference; the differences are algebra only:
-// per-fragment terms (a², k, G(N·V), F0, diffuse albedo) are hoisted out of the
-// light loop, the normalizations multiply by 1/sqrt, and the specular fraction
-// NDF·G / (4·N·V·N·L + 0.0001) is evaluated with one division, and the spot
-// cone divides by cos inner − cos outer as a multiply by its reciprocal
-// (ShadingLights works it out once per frame).
+// Same terms as the reference; the differences are algebra and rounding, made
+// so that a light costs few operations on the multiply-add pipes and a short
+// chain of dependent ones (the light loop is bound by both):
+//  - per-fragment terms (a², k, G(N·V), F0, diffuse albedo, N·V) are hoisted,
+//    and so is the specular's per-fragment factor a²·G(N·V)/π;
+//  - 1/distance is the hardware estimate refined by one Newton step
+//    (inverse_sqrt_refined, ~2^-21 relative) instead of a square root and a
+//    division;
+//  - H is never normalized: with half = V + L, N·H = N·half/|half|, so
+//    NDF = a²/(π·(N·H²·(a² − 1) + 1)²) = a²·|half|⁴/(π·(N·half²·(a² − 1) + |half|²)²),
+//    N·half = N·V + N·L, and H·V = |half|/2 (V and L unit): the specular
+//    fraction NDF·G/(4·N·V·N·L + 0.0001) takes one division, H·V one square root;
+//  - F = F0 + (1 − F0)·w with w = (1 − H·V)⁵ is linear in w, and 1 − F = (1 − F0)(1 − w),
+//    so a light's (k_D·albedo/π + specular)·radiance·N·L is, per channel,
+//    diffuse·(1 − F0)·[E·(1 − w)] + F0·[E·spec] + (1 − F0)·[E·spec·w], E = radiance·N·L,
+//    diffuse = albedo·(1 − metallic)/π: the kernel sums the bracketed terms
+//    times the light's colour (LightTerms, Sums) and applies the per-fragment
+//    factors once, after the lights;
+//  - lights go two at a time (add_lights).
+// The result stays within the tested bound of the reference
+// (tests/shade/test_shade_kernels.cpp). The range test rounds exactly as the
+// reference's, so every ISA cuts the same lanes, and a light adds the same bits
+// to a lane whatever list it comes in (light culling gives the same image for
+// any tile or cluster size).
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -27,72 +45,97 @@ static_assert(kLanePadding % Batch::size == 0, "padding must hold whole vectors"
 // so a NaN dot product becomes 0 rather than spreading.
 Batch max0(const Batch& x) { return xsimd::max(x, Batch(0.0f)); }
 
-// The GGX denominator's square root, n_dot_h²·(a² − 1) + 1; distribution_ggx is
-// a2 / (π·denom²). The caller folds that division into the specular one.
-Batch distribution_ggx_denom(const Batch& n_dot_h, const Batch& a2) {
-    const Batch n_dot_h2 = n_dot_h * n_dot_h;
-    return n_dot_h2 * (a2 - Batch(1.0f)) + Batch(1.0f);
+// 1/sqrt(x): the hardware estimate (12 bits on SSE/AVX2; AVX-512's 14-bit one
+// by intrinsic, since xsimd 8.1's rsqrt does not compile there) and one Newton
+// step r·(3 − x·r²)/2, which squares the estimate's relative error (≤ 1.5·ε²).
+// x = 0 gives NaN (where 1/sqrt gives inf: the reference's normalize(0) is NaN too).
+Batch inverse_sqrt_refined(const Batch& x) {
+#if defined(__AVX512F__)
+    const Batch r = _mm512_rsqrt14_ps(x);
+#else
+    const Batch r = xsimd::rsqrt(x);
+#endif
+    return (r * Batch(0.5f)) * xsimd::fnma(x * r, r, Batch(3.0f));
 }
-
-// Schlick-GGX's denominator, n_dot_x·(1 − k) + k; geometry_schlick_ggx is n_dot_x / that.
-Batch geometry_schlick_ggx_denom(const Batch& n_dot_x, const Batch& k) {
-    return n_dot_x * (Batch(1.0f) - k) + k;
-}
-
-Batch geometry_schlick_ggx(const Batch& n_dot_x, const Batch& k) {
-    return n_dot_x / geometry_schlick_ggx_denom(n_dot_x, k);
-}
-
-// (1 − cosθ)⁵ clamped to [0, 1], the Fresnel weight; pow(x, 5) by multiplication.
-Batch fresnel_schlick_weight(const Batch& cos_theta) {
-    const Batch x = xsimd::min(xsimd::max(Batch(1.0f) - cos_theta, Batch(0.0f)), Batch(1.0f));
-    const Batch x2 = x * x;
-    return x2 * x2 * x;
-}
-
-Batch fresnel_schlick(const Batch& weight, const Batch& f0) { return f0 + (Batch(1.0f) - f0) * weight; }
 
 // A fragment batch's terms that do not depend on the light.
 struct Surface {
-    Vec3 world_pos, n, v, f0, diffuse;
-    Batch a2, k, spec_numerator, four_n_dot_v;
+    Vec3 world_pos, n, v;
+    Batch n_dot_v_raw;     // N·V unclamped
+    Batch a2_minus_1;      // a² − 1 of distribution_ggx
+    Batch k, one_minus_k;  // geometry_schlick_ggx's k
+    Batch four_n_dot_v;
 };
 
-// lo += one light's reflected radiance: l is the unit direction towards the
-// light, attenuation the radiance arriving per unit of light colour. Always
-// inlined: a call would move the accumulators through memory in the hot loop.
-// Accumulate(lo_c, a, b) adds one channel's term a·b: all lanes, or (InRange)
-// the lanes the light reaches. As one explicit fma (fused where the ISA has
-// FMA): left to the compiler, whether it fuses would depend on the code
-// around it, and a light would add different bits where a cluster needs the
-// lane mask and where it does not.
-template <class Accumulate>
-[[gnu::always_inline]] inline void add_light(Vec3& lo, const Surface& s, const Vec3& l, const Batch& attenuation, float color_r,
-                      float color_g, float color_b, Accumulate&& accumulate) {
-    const Vec3 half = s.v + l;
-    const Batch inv_half_length = inverse_length(half);
+// One light's share of a batch, per unit of light colour: E·(1 − w), E·spec' and
+// E·spec'·w, E the radiance·N·L arriving, spec' = NDF·G/(4·N·V·N·L + 0.0001)
+// without its per-fragment factor a²·G(N·V)/π, w the Fresnel weight (1 − H·V)⁵.
+struct LightTerms {
+    Batch diffuse, specular, specular_w;
+};
 
-    const Batch n_dot_l = max0(dot(s.n, l));
-    const Batch n_dot_h = max0(dot(s.n, half) * inv_half_length);
-    const Batch h_dot_v = max0(dot(half, s.v) * inv_half_length);
+// The light's terms: to_light points from the fragment towards it,
+// inv_length = 1/|to_light| (the light's L = to_light·inv_length),
+// attenuation the radiance arriving per unit of light colour.
+[[gnu::always_inline]] inline LightTerms light_terms(const Surface& s, const Vec3& to_light, const Batch& inv_length,
+                                                     const Batch& attenuation) {
+    // half = V + L, not normalized: N·H = N·half/|half|. Formed as a vector
+    // (not as |V|² + 2·V·L + |L|²) so that |half|² − N·half², which the GGX
+    // term cancels down to, rounds like the reference's.
+    const Vec3 half = {xsimd::fma(to_light.x, inv_length, s.v.x), xsimd::fma(to_light.y, inv_length, s.v.y),
+                       xsimd::fma(to_light.z, inv_length, s.v.z)};
+    const Batch half_sq = dot(half, half);
+    const Batch n_dot_to_light = dot(s.n, to_light);
+    const Batch n_dot_l = max0(n_dot_to_light * inv_length);
+    const Batch n_dot_half = max0(xsimd::fma(n_dot_to_light, inv_length, s.n_dot_v_raw));
 
-    // specular / F = NDF·G / (4·N·V·N·L + 0.0001)
-    //   with NDF = a² / (π·denom²), G = G(N·V)·N·L / geometry_schlick_ggx_denom(N·L)
-    const Batch ggx_denom = distribution_ggx_denom(n_dot_h, s.a2);
-    const Batch spec_denominator = ggx_denom * ggx_denom * geometry_schlick_ggx_denom(n_dot_l, s.k) *
-                                   (s.four_n_dot_v * n_dot_l + Batch(0.0001f));
-    const Batch specular_scale = s.spec_numerator * n_dot_l / spec_denominator;
+    // E·spec' = E·N·L·|half|⁴ / (ggx²·(N·L·(1 − k) + k)·(4·N·V·N·L + 0.0001)),
+    // ggx = N·half²·(a² − 1) + |half|²: one division (a Newton-refined
+    // reciprocal measured no faster: the divider takes ~2 multiply-add slots).
+    const Batch ggx = xsimd::fma(n_dot_half * n_dot_half, s.a2_minus_1, half_sq);
+    const Batch g_l_denominator = xsimd::fma(n_dot_l, s.one_minus_k, s.k);
+    const Batch cook_torrance_denominator = xsimd::fma(s.four_n_dot_v, n_dot_l, Batch(0.0001f));
+    const Batch denominator = (ggx * ggx) * (g_l_denominator * cook_torrance_denominator);
+    const Batch irradiance = attenuation * n_dot_l;  // E
+    const Batch e_spec = ((irradiance * n_dot_l) * (half_sq * half_sq)) / denominator;
 
-    const Batch fresnel_weight = fresnel_schlick_weight(h_dot_v);
-    const Batch irradiance_scale = attenuation * n_dot_l;
-    // lo += (k_D·albedo/π + specular) · radiance · N·L, per channel
-    const auto add_channel = [&](Batch& lo_c, const Batch& f0_c, const Batch& diffuse_c, float color_c) {
-        const Batch f = fresnel_schlick(fresnel_weight, f0_c);
-        accumulate(lo_c, (Batch(1.0f) - f) * diffuse_c + specular_scale * f, irradiance_scale * Batch(color_c));
+    // H·V = (V + L)·V/|half| = (1 + L·V)/|half| = |half|/2 for unit V and L;
+    // w = x⁵, x = 1 − H·V clamped at 0 (H·V may round above 1), by
+    // multiplication, as E·x·x⁴ to shorten the chain.
+    const Batch x = max0(xsimd::fnma(Batch(0.5f), xsimd::sqrt(half_sq), Batch(1.0f)));
+    const Batch x2 = x * x;
+    const Batch x4 = x2 * x2;
+    return {xsimd::fnma(irradiance * x, x4, irradiance), e_spec, (e_spec * x) * x4};
+}
+
+// The terms in the lanes of `reaches`, 0 elsewhere: in those lanes the bits of
+// the unmasked terms, so that a light adds the same whether or not its cluster
+// needed the lane test.
+LightTerms masked(const LightTerms& t, const Mask& reaches) {
+    return {xsimd::select(reaches, t.diffuse, Batch(0.0f)), xsimd::select(reaches, t.specular, Batch(0.0f)),
+            xsimd::select(reaches, t.specular_w, Batch(0.0f))};
+}
+
+// Per channel, Σ over lights of colour × LightTerms.
+struct Sums {
+    Vec3 diffuse, specular, specular_w;
+};
+
+// sums += colour × terms by explicit fmas (fused where the ISA has FMA): left to
+// the compiler, fusing would depend on the code around them, and a light would
+// add different bits where a cluster needs the mask and where it does not.
+// Adding zero terms leaves the sums' bits as they were.
+[[gnu::always_inline]] inline void accumulate(Sums& sums, const LightTerms& t, float color_r, float color_g,
+                                              float color_b) {
+    const auto add_channel = [&](float color, Batch& diffuse, Batch& specular, Batch& specular_w) {
+        const Batch c(color);
+        diffuse = xsimd::fma(c, t.diffuse, diffuse);
+        specular = xsimd::fma(c, t.specular, specular);
+        specular_w = xsimd::fma(c, t.specular_w, specular_w);
     };
-    add_channel(lo.x, s.f0.x, s.diffuse.x, color_r);
-    add_channel(lo.y, s.f0.y, s.diffuse.y, color_g);
-    add_channel(lo.z, s.f0.z, s.diffuse.z, color_b);
+    add_channel(color_r, sums.diffuse.x, sums.specular.x, sums.specular_w.x);
+    add_channel(color_g, sums.diffuse.y, sums.specular.y, sums.specular_w.y);
+    add_channel(color_b, sums.diffuse.z, sums.specular.z, sums.specular_w.z);
 }
 
 // Light k of the batch's list: light k itself, or (InRange) light index[k].
@@ -100,6 +143,102 @@ template <bool InRange>
 [[gnu::always_inline]] inline std::size_t light_id(const LightArrays& lights, std::size_t k) {
     if constexpr (InRange) return lights.index[k] & kLightIndexMask;
     else return k;
+}
+
+enum class LightKind { point, spot, directional };
+
+// The vector from the batch's fragments to light j: towards its position, or
+// (directional) against its direction.
+template <LightKind Kind>
+[[gnu::always_inline]] inline Vec3 to_light(const Surface& s, const LightArrays& lights, std::size_t j) {
+    if constexpr (Kind == LightKind::directional)
+        return {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
+    else
+        return Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
+}
+
+// Light j's terms, given to_light and (point, spot) its length² as the range test rounds it.
+template <LightKind Kind>
+[[gnu::always_inline]] inline LightTerms terms_of(const Surface& s, const LightArrays& lights, std::size_t j,
+                                                  const Vec3& to, const Batch& distance_sq) {
+    if constexpr (Kind == LightKind::directional) {  // L = −direction, no attenuation
+        return light_terms(s, to, Batch(1.0f), Batch(1.0f));
+    } else {
+        const Batch inv_distance = inverse_sqrt_refined(distance_sq);
+        const Batch attenuation = inv_distance * inv_distance;  // radiance = color / distance²
+        if constexpr (Kind == LightKind::point) {
+            return light_terms(s, to, inv_distance, attenuation);
+        } else {  // spot: a point light × cone factor
+            // cos θ = direction · (light to fragment) = −(direction · L)
+            const Vec3 direction{Batch(lights.dir_x[j]), Batch(lights.dir_y[j]), Batch(lights.dir_z[j])};
+            const Batch cos_theta = -dot(direction, to) * inv_distance;
+            const Batch cone = (cos_theta - Batch(lights.cos_outer[j])) * Batch(lights.inv_cone_width[j]);
+            // clamp to [0, 1], NaN first so that it becomes 0
+            const Batch cone_factor = xsimd::min(xsimd::max(cone, Batch(0.0f)), Batch(1.0f));
+            return light_terms(s, to, inv_distance, attenuation * cone_factor);
+        }
+    }
+}
+
+// Adds the lights [begin, end) of one type group. With InRange, each point or
+// spot light counts only in the lanes within its range, unless its list entry
+// says it reaches them all (kReachesAll).
+//
+// Lights go two at a time: their instructions are independent, so the core
+// overlaps one light's long chain of dependent operations (1/distance, V + L,
+// the GGX term, the division) with the other's rather than waiting for it.
+template <bool InRange, LightKind Kind>
+[[gnu::always_inline]] inline void add_lights(Sums& sums, const Surface& s, const LightArrays& lights,
+                                              std::size_t begin, std::size_t end) {
+    constexpr bool cut = InRange && Kind != LightKind::directional;
+    // Which lanes list entry k (light j) reaches: every lane for a kReachesAll
+    // entry (its threshold is +inf), else those with distance² <= range².
+    const auto reaches = [&](std::size_t k, std::size_t j, const Batch& distance_sq) {
+        const bool all = lights.index[k] & kReachesAll;
+        return distance_sq <= Batch(all ? INFINITY : lights.range_sq[j]);
+    };
+    const auto add = [&](std::size_t j, const LightTerms& t) {
+        accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
+    };
+    std::size_t k = begin;
+    for (; k + 2 <= end; k += 2) {
+        const std::size_t j0 = light_id<InRange>(lights, k), j1 = light_id<InRange>(lights, k + 1);
+        const Vec3 to0 = to_light<Kind>(s, lights, j0), to1 = to_light<Kind>(s, lights, j1);
+        Batch distance_sq0(0.0f), distance_sq1(0.0f);
+        if constexpr (Kind != LightKind::directional) {
+            distance_sq0 = length_squared_unfused(to0);
+            distance_sq1 = length_squared_unfused(to1);
+        }
+        if constexpr (cut) {
+            const Mask reach0 = reaches(k, j0, distance_sq0), reach1 = reaches(k + 1, j1, distance_sq1);
+            if (!xsimd::all(reach0 & reach1)) {  // some lane out of range of either
+                if (!xsimd::any(reach0 | reach1)) continue;
+                const LightTerms t0 = masked(terms_of<Kind>(s, lights, j0, to0, distance_sq0), reach0);
+                const LightTerms t1 = masked(terms_of<Kind>(s, lights, j1, to1, distance_sq1), reach1);
+                add(j0, t0);
+                add(j1, t1);
+                continue;
+            }
+        }
+        const LightTerms t0 = terms_of<Kind>(s, lights, j0, to0, distance_sq0);
+        const LightTerms t1 = terms_of<Kind>(s, lights, j1, to1, distance_sq1);
+        add(j0, t0);
+        add(j1, t1);
+    }
+    if (k < end) {
+        const std::size_t j = light_id<InRange>(lights, k);
+        const Vec3 to = to_light<Kind>(s, lights, j);
+        Batch distance_sq(0.0f);
+        if constexpr (Kind != LightKind::directional) distance_sq = length_squared_unfused(to);
+        if constexpr (cut) {
+            const Mask reach = reaches(k, j, distance_sq);
+            if (!xsimd::all(reach)) {
+                if (xsimd::any(reach)) add(j, masked(terms_of<Kind>(s, lights, j, to, distance_sq), reach));
+                return;
+            }
+        }
+        add(j, terms_of<Kind>(s, lights, j, to, distance_sq));
+    }
 }
 
 // InRange: each light is cut at its range, lane by lane (shade_pbr_within_range);
@@ -114,90 +253,44 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
     const Batch roughness = xsimd::load_unaligned(in.roughness + i);
     const Batch ao = xsimd::load_unaligned(in.ao + i);
 
+    // Per fragment, constant over the lights: exact 1/sqrt and divisions are cheap here.
     s.n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
     s.v = normalize(cam_pos - s.world_pos);
     const Batch f0_base(0.04f);  // mix(vec3(0.04), albedo, metallic)
-    s.f0 = {f0_base + (albedo.x - f0_base) * metallic, f0_base + (albedo.y - f0_base) * metallic,
-            f0_base + (albedo.z - f0_base) * metallic};
-
-    // Per fragment, constant over the lights.
+    const Vec3 f0 = {f0_base + (albedo.x - f0_base) * metallic, f0_base + (albedo.y - f0_base) * metallic,
+                     f0_base + (albedo.z - f0_base) * metallic};
     const Batch a = roughness * roughness;
-    s.a2 = a * a;
+    const Batch a2 = a * a;
+    s.a2_minus_1 = a2 - Batch(1.0f);
     const Batch r = roughness + Batch(1.0f);
     s.k = (r * r) * Batch(1.0f / 8.0f);
-    const Batch n_dot_v = max0(dot(s.n, s.v));
-    const Batch g_v = geometry_schlick_ggx(n_dot_v, s.k);
-    s.spec_numerator = s.a2 * g_v * Batch(1.0f / kPi);  // the per-fragment part of NDF·G
+    s.one_minus_k = Batch(1.0f) - s.k;
+    s.n_dot_v_raw = dot(s.n, s.v);
+    const Batch n_dot_v = max0(s.n_dot_v_raw);
+    const Batch g_v = n_dot_v / (n_dot_v * s.one_minus_k + s.k);  // geometry_schlick_ggx(N·V)
+    const Batch spec_numerator = a2 * g_v * Batch(1.0f / kPi);  // a²·G(N·V)/π: spec = spec_numerator·spec'
+
     s.four_n_dot_v = Batch(4.0f) * n_dot_v;
-    // k_D·albedo/π = (1 − F)·diffuse, k_D = (1 − F)·(1 − metallic)
+
+    Sums sums;
+    sums.diffuse = sums.specular = sums.specular_w = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
+    add_lights<InRange, LightKind::point>(sums, s, lights, 0, lights.spot_begin);
+    add_lights<InRange, LightKind::spot>(sums, s, lights, lights.spot_begin, lights.directional_begin);
+    add_lights<InRange, LightKind::directional>(sums, s, lights, lights.directional_begin, lights.count);
+
+    // Lo = diffuse·(1 − F0)·Σ E(1 − w) + F0·Σ E·spec + (1 − F0)·Σ E·spec·w, with
+    // diffuse = albedo·(1 − metallic)/π (k_D·albedo/π = (1 − F)·diffuse, 1 − F = (1 − F0)(1 − w)).
     const Batch diffuse_scale = (Batch(1.0f) - metallic) * Batch(1.0f / kPi);
-    s.diffuse = albedo * diffuse_scale;
-
-    Vec3 lo = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
-    const auto add_all = [](Batch& lo_c, const Batch& a, const Batch& b) { lo_c = xsimd::fma(a, b, lo_c); };
-    // A point or spot light, light k of the list: 1/distance to it, and which
-    // lanes it reaches: all (without InRange, or kReachesAll: no lane test),
-    // or those within range (`masked`). Returns false where it reaches none:
-    // the light is skipped, which adds the same as adding nothing per lane.
-    Mask reaches(true);
-    bool masked = false;
-    Batch inv_distance;
-    // The lane test rounds as the scalar distance_squared does; the shading
-    // itself is the uncut kernel's, so that a light adds the same bits to a lane
-    // whether or not its cluster needed the test.
-    const auto reach = [&](std::size_t k, std::size_t j, const Vec3& to_light) {
-        if constexpr (InRange) {
-            masked = !(lights.index[k] & kReachesAll);
-            if (masked) {
-                reaches = length_squared_unfused(to_light) <= Batch(lights.range_sq[j]);
-                if (!xsimd::any(reaches)) return false;
-            }
-        }
-        inv_distance = inverse_length(to_light);
-        return true;
-    };
-    const auto add_masked = [&](Batch& lo_c, const Batch& a, const Batch& b) {
-        lo_c = xsimd::select(reaches, xsimd::fma(a, b, lo_c), lo_c);
-    };
-    // add_light with the accumulation `reach` chose (two inlined copies: no mask in the common case).
-    const auto add_reached_light = [&](const Vec3& l, const Batch& attenuation, std::size_t j) {
-        if (InRange && masked)
-            add_light(lo, s, l, attenuation, lights.color_r[j], lights.color_g[j], lights.color_b[j], add_masked);
-        else
-            add_light(lo, s, l, attenuation, lights.color_r[j], lights.color_g[j], lights.color_b[j], add_all);
-    };
-
-    // One loop per light type: the type is uniform over a light, so it costs no lane math.
-    for (std::size_t k = 0; k < lights.spot_begin; ++k) {  // point: radiance = color / distance²
-        const std::size_t j = light_id<InRange>(lights, k);
-        const Vec3 to_light =
-            Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        if (!reach(k, j, to_light)) continue;
-        add_reached_light(to_light * inv_distance, inv_distance * inv_distance, j);
-    }
-    for (std::size_t k = lights.spot_begin; k < lights.directional_begin; ++k) {  // spot: a point light × cone factor
-        const std::size_t j = light_id<InRange>(lights, k);
-        const Vec3 to_light =
-            Vec3{Batch(lights.pos_x[j]), Batch(lights.pos_y[j]), Batch(lights.pos_z[j])} - s.world_pos;
-        if (!reach(k, j, to_light)) continue;
-        const Vec3 l = to_light * inv_distance;
-        // cos θ = direction · (light to fragment) = −(direction · L)
-        const Batch cos_theta = -dot(Vec3{Batch(lights.dir_x[j]), Batch(lights.dir_y[j]), Batch(lights.dir_z[j])}, l);
-        const Batch cone = (cos_theta - Batch(lights.cos_outer[j])) * Batch(lights.inv_cone_width[j]);
-        // clamp to [0, 1], NaN first so that it becomes 0
-        const Batch cone_factor = xsimd::min(xsimd::max(cone, Batch(0.0f)), Batch(1.0f));
-        add_reached_light(l, inv_distance * inv_distance * cone_factor, j);
-    }
-    for (std::size_t k = lights.directional_begin; k < lights.count; ++k) {  // directional: L = −direction, no attenuation
-        const std::size_t j = light_id<InRange>(lights, k);
-        const Vec3 l = {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
-        add_light(lo, s, l, Batch(1.0f), lights.color_r[j], lights.color_g[j], lights.color_b[j], add_all);
-    }
-
     const Batch ambient = Batch(0.03f) * ao;
-    (albedo.x * ambient + lo.x).store_unaligned(out.r + i);
-    (albedo.y * ambient + lo.y).store_unaligned(out.g + i);
-    (albedo.z * ambient + lo.z).store_unaligned(out.b + i);
+    const auto radiance = [&](const Batch& albedo_c, const Batch& f0_c, const Batch& diffuse_sum,
+                              const Batch& specular_sum, const Batch& specular_w_sum) {
+        const Batch lo = (Batch(1.0f) - f0_c) * (albedo_c * diffuse_scale * diffuse_sum + spec_numerator * specular_w_sum) +
+                         (f0_c * spec_numerator) * specular_sum;
+        return albedo_c * ambient + lo;
+    };
+    radiance(albedo.x, f0.x, sums.diffuse.x, sums.specular.x, sums.specular_w.x).store_unaligned(out.r + i);
+    radiance(albedo.y, f0.y, sums.diffuse.y, sums.specular.y, sums.specular_w.y).store_unaligned(out.g + i);
+    radiance(albedo.z, f0.z, sums.diffuse.z, sums.specular.z, sums.specular_w.z).store_unaligned(out.b + i);
 }
 
 // Reinhard c / (c + 1), then c^(1/2.2) as exp(log(c)/2.2); c = 0 gives 0 (log would give -inf).

@@ -180,6 +180,13 @@ TEST_CASE("[animation] errors name file:line:column and what was expected") {
           "anim.toml:25:8: expected at least one key in 'animation.objects[0].keys'");
     CHECK(error_of("[animation]\nframes = 10\n[[animation.objects]]\nobject = 0\nkeys = [{frame = 0, color = [2, 0, 0]}]\n") ==
           "anim.toml:25:30: expected 'animation.objects[0].keys[0].color[0]' to be in [0, 1], got 2");
+    // The scene file's wording (toml_reader.hpp): the type found, the element count, a light's colour ">= 0".
+    CHECK(error_of("[animation]\nframes = \"ten\"\n") ==
+          "anim.toml:22:10: expected an integer for 'animation.frames', got string");
+    CHECK(error_of("[animation]\nframes = 10\n[animation.orbit]\ntarget = [0, 0]\n") ==
+          "anim.toml:24:10: expected an array of 3 numbers for 'animation.orbit.target', got 2 elements");
+    CHECK(error_of("[animation]\nframes = 10\n[[animation.lights]]\nlight = 0\nkeys = [{frame = 0, color = [1, -1, 0]}]\n") ==
+          "anim.toml:25:33: expected 'animation.lights[0].keys[0].color[1]' to be >= 0, got -1");
     CHECK(error_of("[animation]\nframes = 10\n[[animation.objects]]\nobject = 0\nkeys = [{frame = 0, scale = 0}]\n") ==
           "anim.toml:25:29: expected every component of 'animation.objects[0].keys[0].scale' to be non-zero");
     CHECK(error_of("[animation]\nframes = 10\n[[animation.lights]]\nlight = 1\nkeys = [{frame = 0, position = [0, 1, 0]}]\n") ==

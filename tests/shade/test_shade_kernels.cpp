@@ -35,7 +35,12 @@ constexpr float kSentinel = -1234.5f;
 // same errors in other bits, so there the two can only agree as well as the
 // formula lets them. conditioning_allowance is the change in the light's
 // contribution, in double, when each dot product moves by kDotProductError; it
-// is negligible (< 1e-6 relative) away from those corners.
+// is negligible (< 1e-6 relative) away from those corners. N·H and H·V move
+// kDotProductError/|V + L| where |V + L| < 1 (the light behind the surface as
+// seen from the camera): H = normalize(V + L) there divides the few-ulp
+// rounding of V and L by a short sum, so the reference's own H is off by that
+// much, and a kernel that rounds L differently (the SIMD kernels' 1/distance is
+// refined from the hardware estimate, not divided) lands elsewhere within it.
 constexpr double kRelTolerance = 1e-4;
 constexpr double kAbsTolerance = 1e-6;
 constexpr double kDotProductError = 8.0 / (1 << 24);  // 8 half-ulps of 1
@@ -213,6 +218,7 @@ glm::dvec3 conditioning_allowance(const RandomScene& scene, std::size_t i) {
         const glm::dvec3 l =
             light.type == LightType::directional ? -glm::dvec3(light.direction) : glm::normalize(to_light);
         const glm::dvec3 h = glm::normalize(v + l);
+        const double h_error_scale = 1.0 / std::min(1.0, glm::length(v + l));  // see kDotProductError
         glm::dvec3 radiance = glm::dvec3(light.color);
         if (light.type != LightType::directional) radiance /= glm::dot(to_light, to_light);
         const DotProducts exact{glm::dot(n, v), glm::dot(n, l), glm::dot(n, h), glm::dot(h, v)};
@@ -233,9 +239,10 @@ glm::dvec3 conditioning_allowance(const RandomScene& scene, std::size_t i) {
         for (double DotProducts::*term : {&DotProducts::n_dot_v, &DotProducts::n_dot_l, &DotProducts::n_dot_h,
                                           &DotProducts::h_dot_v}) {
             glm::dvec3 worst(0.0);
+            const bool of_h = term == &DotProducts::n_dot_h || term == &DotProducts::h_dot_v;
             for (double step : {-kDotProductError, kDotProductError}) {
                 DotProducts moved = exact;
-                moved.*term += step;
+                moved.*term += of_h ? step * h_error_scale : step;
                 worst = glm::max(worst, glm::abs(light_contribution(moved, m, radiance) - base));
             }
             allowance += worst;

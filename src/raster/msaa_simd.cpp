@@ -1,0 +1,202 @@
+// The 4× MSAA rasterizer's inner loop over vectors of samples
+// (msaa_kernels.hpp), compiled once per ISA. Same arithmetic as the scalar
+// loop in msaa.cpp, lane by lane, so both give bit-identical sample buffers.
+#include <bit>
+#include <cstdint>
+
+#include "simd/kernel_prelude.hpp"
+
+#include "raster/msaa_kernels.hpp"
+#include "raster/msaa_pattern.hpp"
+#include "raster/raster_limits.hpp"
+
+namespace tessera::raster {
+namespace {
+
+using Arch = TESSERA_SIMD_ARCH;
+using Int = xsimd::batch<std::int32_t, Arch>;
+using Float = xsimd::batch<float, Arch>;
+using IntMask = xsimd::batch_bool<std::int32_t, Arch>;
+using Double = xsimd::batch<double, Arch>;
+static_assert(Double::size * 2 == Float::size);
+
+constexpr int kPixels = int(Int::size) / kMsaaSamples;  // pixels per vector
+static_assert(kPixels * kMsaaSamples == int(Int::size));
+static_assert(kMsaaKernelOverreach >= (kPixels - 1) * kMsaaSamples);
+
+// Per lane i (pixel i / 4, sample i % 4): the sample's offset from the first
+// pixel's centre in 1/256 pixel, x (pixel · 256 + sample offset) and y.
+struct LaneOffsets {
+    alignas(64) std::int32_t x[16], y[16], pixel[16];
+    alignas(64) double x_double[16], y_double[16];
+    constexpr LaneOffsets() : x{}, y{}, pixel{}, x_double{}, y_double{} {
+        for (int i = 0; i < 16; ++i) {
+            x[i] = 256 * (i / kMsaaSamples) + kSampleOffsetX[i % kMsaaSamples];
+            y[i] = kSampleOffsetY[i % kMsaaSamples];
+            pixel[i] = i / kMsaaSamples;
+            x_double[i] = x[i], y_double[i] = y[i];
+        }
+    }
+};
+constexpr LaneOffsets kLane;
+
+// Which lanes of a comparison hold: bit i for lane i. Hand-written: xsimd 8.1
+// has no movemask.
+[[gnu::always_inline]] inline unsigned lane_bits(const IntMask& b) {
+#if XSIMD_WITH_AVX512F
+    return unsigned(b.data);
+#elif XSIMD_WITH_AVX2
+    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(b)));
+#else
+    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(b)));
+#endif
+}
+
+// Two vectors of doubles (lanes 0..n/2-1, n/2..n-1) rounded to one of floats.
+// Hand-written: xsimd 8.1 has no conversion between batches of different lane
+// counts.
+[[gnu::always_inline]] inline Float round_to_float(const Double& lo, const Double& hi) {
+#if XSIMD_WITH_AVX512F
+    const __m512d low = _mm512_castpd256_pd512(_mm256_castps_pd(_mm512_cvtpd_ps(lo)));
+    return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm512_cvtpd_ps(hi)), 1));
+#elif XSIMD_WITH_AVX
+    return _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
+#else
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
+#endif
+}
+
+// The barycentric numerators E1, E2 in double where they leave int32
+// (MsaaWideWeights): per lane the row's value plus the lane's offset, exact
+// integers, so float(E) rounds once as the scalar loop's float(int64) does.
+struct WideLanes {
+    Double offset_lo[2], offset_hi[2];  // the lanes' offsets from the vector's first pixel centre
+    double row[2], right[2], down[2];   // at the row's first vector; per vector right; per row down
+};
+
+// A triangle's edges over the lanes of a row's first vector, biased by the
+// top-left rule (a sample is inside where all three are >= 0), and how they
+// change one vector right and one row down.
+struct LaneEdges {
+    Int row[3], right[3], down[3];
+    std::int32_t bias1, bias2;  // removed again for the barycentric numerators
+};
+
+// The tile-relative block [x_begin, x_end) × [y_begin, y_end), a row at a
+// time, kPixels pixels per vector. The last vector of a row may reach up to 3
+// pixels past its end (into the next row or TileSamples' padding): those lanes
+// write back what they read.
+template <bool kWide>
+[[gnu::always_inline]] inline void rasterize_rows(LaneEdges edges, WideLanes wide, int x_begin, int x_end, int y_begin, int y_end,
+                                                  float inv_area_value, float d0_value, float d10_value,
+                                                  float d20_value, std::uint32_t triangle_id, const SampleView& tile,
+                                                  RasterCounters& counters) {
+    const Int lane_pixel = Int::load_aligned(kLane.pixel);
+    // E >= 0 as E > -1: one compare (AVX2 has no >= for integers).
+    const Int bias1(edges.bias1), bias2(edges.bias2), minus_one(-1), id = Int(std::int32_t(triangle_id));
+    const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
+    unsigned fragments = 0, passed = 0;
+    for (int y = y_begin; y < y_end; ++y) {
+        Int e0 = edges.row[0], e1 = edges.row[1], e2 = edges.row[2];
+        double weight1 = wide.row[0], weight2 = wide.row[1];
+        const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + x_begin);
+        std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
+        std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
+        for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
+            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (lane_pixel < Int(x_end - x));
+            const Int w1 = e1, w2 = e2;
+            const double v1 = weight1, v2 = weight2;
+            e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
+            if constexpr (kWide) weight1 += wide.right[0], weight2 += wide.right[1];
+            const unsigned inside_bits = lane_bits(inside);
+            if (inside_bits == 0) continue;
+            fragments += unsigned(std::popcount(inside_bits));
+            // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
+            // (max(z, 0) gives 0 for -0 too, as the scalar z0 > 0 ? z0 : 0 does).
+            Float lambda1, lambda2;
+            if constexpr (kWide) {
+                lambda1 = round_to_float(Double(v1) + wide.offset_lo[0], Double(v1) + wide.offset_hi[0]) * inv_area;
+                lambda2 = round_to_float(Double(v2) + wide.offset_lo[1], Double(v2) + wide.offset_hi[1]) * inv_area;
+            } else {
+                lambda1 = xsimd::to_float(w1 - bias1) * inv_area;
+                lambda2 = xsimd::to_float(w2 - bias2) * inv_area;
+            }
+            const Int new_depth = xsimd::bitwise_cast<Int>(xsimd::max(d0 + lambda1 * d10 + lambda2 * d20, zero));
+            // Depths in [0, 1] order like their bit patterns: LESS as an integer compare.
+            const Int old_depth = Int::load_unaligned(depth);
+            const IntMask pass = inside & (new_depth < old_depth);
+            const unsigned pass_bits = lane_bits(pass);
+            if (pass_bits == 0) continue;
+            passed += unsigned(std::popcount(pass_bits));
+            xsimd::select(pass, new_depth, old_depth).store_unaligned(depth);
+            xsimd::select(pass, id, Int::load_unaligned(triangle)).store_unaligned(triangle);
+        }
+        for (int k = 0; k < 3; ++k) edges.row[k] += edges.down[k];
+        if constexpr (kWide) wide.row[0] += wide.down[0], wide.row[1] += wide.down[1];
+    }
+    counters.fragments += fragments;
+    counters.depth_passed += passed;
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const MsaaWideWeights* weights,
+                                              const SampleView& tile, RasterCounters& counters) {
+    // E is affine: E at a lane's sample = E at the block's first pixel centre
+    // + (step_x / 256) · offset x + (step_y / 256) · offset y, exact in int32
+    // (the steps are multiples of 256), as the scalar loop's offset[k][s]
+    // plus its whole-pixel steps.
+    static_assert(kSubpixelScale == 256);
+    const Int offset_x = Int::load_aligned(kLane.x), offset_y = Int::load_aligned(kLane.y);
+    LaneEdges edges;
+    for (int k = 0; k < 3; ++k) {
+        edges.row[k] = Int(b.row[k]) + offset_x * Int(b.step_x[k] / 256) + offset_y * Int(b.step_y[k] / 256);
+        edges.right[k] = Int(kPixels * b.step_x[k]);
+        edges.down[k] = Int(b.step_y[k]);
+    }
+    edges.bias1 = b.bias[1], edges.bias2 = b.bias[2];
+    WideLanes wide{};
+    if (!weights)
+        return rasterize_rows<false>(edges, wide, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10,
+                                     b.d20, b.triangle_id, tile, counters);
+    const Double x_lo = Double::load_aligned(kLane.x_double), x_hi = Double::load_aligned(kLane.x_double + Double::size);
+    const Double y_lo = Double::load_aligned(kLane.y_double), y_hi = Double::load_aligned(kLane.y_double + Double::size);
+    for (int k = 0; k < 2; ++k) {
+        // (step / 256) · offset, as in the int32 case: exact in double.
+        const Double per_x(weights->step_x[k] / 256), per_y(weights->step_y[k] / 256);
+        wide.offset_lo[k] = x_lo * per_x + y_lo * per_y;
+        wide.offset_hi[k] = x_hi * per_x + y_hi * per_y;
+        wide.row[k] = weights->row[k];
+        wide.right[k] = kPixels * weights->step_x[k];
+        wide.down[k] = weights->step_y[k];
+    }
+    rasterize_rows<true>(edges, wide, b.x_begin, b.x_end, b.y_begin, b.y_end, b.inv_area, b.d0, b.d10, b.d20,
+                         b.triangle_id, tile, counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                                             const SampleView& tile, RasterCounters& counters) {
+    // The lanes' sample positions in the box's first vector, fixed point.
+    const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kLane.x);
+    const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kLane.y);
+    LaneEdges edges;
+    // Edge k from corner a to corner b: E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
+    // edge_function(), plus EdgeStepper's top-left bias; exact in int32, every value
+    // being below 2^26.
+    constexpr int kCorners[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    std::int32_t bias[3];
+    for (int k = 0; k < 3; ++k) {
+        const int a = kCorners[k][0], b = kCorners[k][1];
+        const std::int32_t dx = t.x[b] - t.x[a], dy = t.y[b] - t.y[a];
+        bias[k] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+        edges.row[k] = Int(dx) * (y - Int(t.y[a])) - Int(dy) * (x - Int(t.x[a])) + Int(bias[k]);
+        edges.right[k] = Int(-dy * (kPixels * 256));
+        edges.down[k] = Int(dx * 256);
+    }
+    edges.bias1 = bias[1], edges.bias2 = bias[2];
+    rasterize_rows<false>(edges, WideLanes{}, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
+                   box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0], t.depth[2] - t.depth[0],
+                   triangle_id, tile, counters);
+}
+
+}  // namespace tessera::raster
