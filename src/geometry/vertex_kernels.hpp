@@ -24,7 +24,7 @@ struct VertexRunInput {
 
 // Where the run's results go: ShadedVertex seen as 12 floats (clip xyzw, world
 // xyz, normal xyz, uv), its outcode, and its ScreenVertex seen as 4 int32 (x, y,
-// then the bits of depth and 1/w). The screen vertex is written for every
+// then the bits of depth, and the outcode again). The screen vertex is written for every
 // vertex but means something only where the outcode has no clip-plane bit
 // and no kNotFinite.
 struct VertexRunOutput {

@@ -36,6 +36,7 @@ void run_vertex_stage(simd::Isa isa, const Mesh& mesh, std::size_t first, const 
             out.outcodes[i] = outcode(out.vertices[i], guard);
             if (!(out.outcodes[i] & (kClipPlaneBits | kNotFinite)))
                 out.screen[i] = to_screen(out.vertices[i].clip_pos, viewport);
+            out.screen[i].outcode = out.outcodes[i];
         }
         return;
     }

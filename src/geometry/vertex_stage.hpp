@@ -24,8 +24,9 @@ void shade_vertices(const Mesh& mesh, std::size_t first, const glm::mat4& model,
                     std::span<ShadedVertex> out);
 
 // Everything the frame keeps per vertex, for a run of vertices: the shaded
-// vertex, its outcode, and its screen position (set only where the outcode has
-// no clip-plane bit and the vertex is finite: the only screen positions ever read).
+// vertex, its outcode, and its screen position (the outcode again, and x, y and
+// depth set only where the outcode has no clip-plane bit and the vertex is
+// finite: the only screen positions ever read).
 struct VertexRun {
     std::span<ShadedVertex> vertices;
     std::uint32_t* outcodes;

@@ -8,6 +8,8 @@
 
 #include "simd/kernel_prelude.hpp"
 
+#include "simd/transpose.hpp"
+
 #include "geometry/clipper.hpp"
 #include "geometry/vertex_kernels.hpp"
 #include "geometry/viewport.hpp"
@@ -56,56 +58,105 @@ Int outcodes(const Vec4& p, const Float& nx, const Float& ny, const Float& nz, c
 void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
     // Per-lane staging: object-space inputs in, results out.
     alignas(64) float position[3][kLanes], normal[3][kLanes], uv[2][kLanes];
-    alignas(64) float clip[4][kLanes], world[3][kLanes], world_normal[3][kLanes], depth[kLanes], inv_w[kLanes];
-    alignas(64) std::int32_t code[kLanes], screen_x[kLanes], screen_y[kLanes];
+    alignas(64) float clip[4][kLanes], world[3][kLanes], world_normal[3][kLanes], depth_lanes[kLanes];
     const Float guard_x(in.guard_x_ndc), guard_y(in.guard_y_ndc), width(in.width), height(in.height);
     const Float half(0.5f), one(1.0f), subpixel(static_cast<float>(kSubpixelScale));
 
     for (std::size_t first = 0; first < in.count; first += kLanes) {
         const std::size_t n = std::min(kLanes, in.count - first);
-        for (std::size_t i = 0; i < kLanes; ++i) {
-            // Lanes past the run compute on zeros and are never written back.
-            const bool live = i < n;
-            for (int c = 0; c < 3; ++c) {
-                position[c][i] = live ? in.positions[3 * (first + i) + c] : 0.0f;
-                normal[c][i] = live ? in.normals[3 * (first + i) + c] : 0.0f;
-            }
-            for (int c = 0; c < 2; ++c) uv[c][i] = live && in.uvs ? in.uvs[2 * (first + i) + c] : 0.0f;
+        Float px, py, pz, nx0, ny0, nz0, u, v;
+#if defined(__AVX2__) && !defined(__AVX512F__)
+        // Lanes whose 16-byte loads (xyz + 1 float, uv + 2) stay inside the run: records in, transposed.
+        const bool transposed = first + kLanes < in.count;
+        if (transposed) {
+            const auto load = [&](const float* base, std::size_t stride, Float& a, Float& b, Float& c) {
+                __m256 r[4];
+                for (std::size_t j = 0; j < 4; ++j)
+                    r[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + stride * (first + j))),
+                                                _mm_loadu_ps(base + stride * (first + j + 4)), 1);
+                simd::transpose4x4_halves(r);
+                a = r[0], b = r[1], c = r[2];
+            };
+            load(in.positions, 3, px, py, pz);
+            load(in.normals, 3, nx0, ny0, nz0);
+            Float unused;
+            if (in.uvs) load(in.uvs, 2, u, v, unused);
+            else u = v = Float(0.0f);
         }
-        const Float px = Float::load_aligned(position[0]), py = Float::load_aligned(position[1]),
-                    pz = Float::load_aligned(position[2]);
+#else
+        constexpr bool transposed = false;
+#endif
+        if (!transposed) {
+            for (std::size_t i = 0; i < kLanes; ++i) {
+                // Lanes past the run compute on zeros and are never written back.
+                const bool live = i < n;
+                for (int c = 0; c < 3; ++c) {
+                    position[c][i] = live ? in.positions[3 * (first + i) + c] : 0.0f;
+                    normal[c][i] = live ? in.normals[3 * (first + i) + c] : 0.0f;
+                }
+                for (int c = 0; c < 2; ++c) uv[c][i] = live && in.uvs ? in.uvs[2 * (first + i) + c] : 0.0f;
+            }
+            px = Float::load_aligned(position[0]), py = Float::load_aligned(position[1]);
+            pz = Float::load_aligned(position[2]);
+            nx0 = Float::load_aligned(normal[0]), ny0 = Float::load_aligned(normal[1]);
+            nz0 = Float::load_aligned(normal[2]);
+            u = Float::load_aligned(uv[0]), v = Float::load_aligned(uv[1]);
+        }
         const Float wx = affine_row(in.model, 0, px, py, pz), wy = affine_row(in.model, 1, px, py, pz),
                     wz = affine_row(in.model, 2, px, py, pz);
         const Vec4 p{affine_row(in.view_projection, 0, wx, wy, wz), affine_row(in.view_projection, 1, wx, wy, wz),
                      affine_row(in.view_projection, 2, wx, wy, wz), affine_row(in.view_projection, 3, wx, wy, wz)};
-        const Float nx0 = Float::load_aligned(normal[0]), ny0 = Float::load_aligned(normal[1]),
-                    nz0 = Float::load_aligned(normal[2]);
         const Float nx = linear_row(in.normal_matrix, 0, nx0, ny0, nz0),
                     ny = linear_row(in.normal_matrix, 1, nx0, ny0, nz0),
                     nz = linear_row(in.normal_matrix, 2, nx0, ny0, nz0);
-        outcodes(p, nx, ny, nz, guard_x, guard_y).store_aligned(code);
+        const Int codes = outcodes(p, nx, ny, nz, guard_x, guard_y);
         // to_screen(): the viewport transform, snapped to 24.8 fixed point
         // (round to nearest even, as lrintf).
         const Float w_inv = one / p.w;
         const Float sx = (p.x * w_inv * half + half) * width, sy = (half - p.y * w_inv * half) * height;
-        xsimd::nearbyint_as_int(sx * subpixel).store_aligned(screen_x);
-        xsimd::nearbyint_as_int(sy * subpixel).store_aligned(screen_y);
-        (p.z * w_inv * half + half).store_aligned(depth);
-        w_inv.store_aligned(inv_w);
+        const Int screen_x = xsimd::nearbyint_as_int(sx * subpixel), screen_y = xsimd::nearbyint_as_int(sy * subpixel);
+        const Float depth = p.z * w_inv * half + half;
+#if defined(__AVX2__) && !defined(__AVX512F__)
+        if (n == kLanes) {  // whole records out, transposed
+            __m256 words[8] = {p.x, p.y, p.z, p.w, wx, wy, wz, nx};
+            simd::transpose8x8(words);
+            __m256 tail[4] = {ny, nz, u, v};
+            simd::transpose4x4_halves(tail);
+            __m256 screen[4] = {_mm256_castsi256_ps(screen_x), _mm256_castsi256_ps(screen_y), depth,
+                                _mm256_castsi256_ps(codes)};
+            simd::transpose4x4_halves(screen);
+            for (std::size_t j = 0; j < kLanes; ++j) {
+                float* vertex = out.vertices + 12 * (first + j);
+                _mm256_storeu_ps(vertex, words[j]);
+                const __m128 rest = j < 4 ? _mm256_castps256_ps128(tail[j]) : _mm256_extractf128_ps(tail[j - 4], 1);
+                _mm_storeu_ps(vertex + 8, rest);
+                const __m128 on_screen =
+                    j < 4 ? _mm256_castps256_ps128(screen[j]) : _mm256_extractf128_ps(screen[j - 4], 1);
+                _mm_storeu_ps(reinterpret_cast<float*>(out.screen + 4 * (first + j)), on_screen);
+            }
+            codes.store_unaligned(reinterpret_cast<std::int32_t*>(out.outcodes + first));
+            continue;
+        }
+#endif
+        alignas(64) std::int32_t code[kLanes], screen_x_lanes[kLanes], screen_y_lanes[kLanes];
+        codes.store_aligned(code);
+        screen_x.store_aligned(screen_x_lanes), screen_y.store_aligned(screen_y_lanes);
+        depth.store_aligned(depth_lanes);
+        u.store_aligned(uv[0]), v.store_aligned(uv[1]);
         p.x.store_aligned(clip[0]), p.y.store_aligned(clip[1]), p.z.store_aligned(clip[2]), p.w.store_aligned(clip[3]);
         wx.store_aligned(world[0]), wy.store_aligned(world[1]), wz.store_aligned(world[2]);
         nx.store_aligned(world_normal[0]), ny.store_aligned(world_normal[1]), nz.store_aligned(world_normal[2]);
 
         for (std::size_t i = 0; i < n; ++i) {
-            float* v = out.vertices + 12 * (first + i);
-            v[0] = clip[0][i], v[1] = clip[1][i], v[2] = clip[2][i], v[3] = clip[3][i];
-            v[4] = world[0][i], v[5] = world[1][i], v[6] = world[2][i];
-            v[7] = world_normal[0][i], v[8] = world_normal[1][i], v[9] = world_normal[2][i];
-            v[10] = uv[0][i], v[11] = uv[1][i];
+            float* vertex = out.vertices + 12 * (first + i);
+            vertex[0] = clip[0][i], vertex[1] = clip[1][i], vertex[2] = clip[2][i], vertex[3] = clip[3][i];
+            vertex[4] = world[0][i], vertex[5] = world[1][i], vertex[6] = world[2][i];
+            vertex[7] = world_normal[0][i], vertex[8] = world_normal[1][i], vertex[9] = world_normal[2][i];
+            vertex[10] = uv[0][i], vertex[11] = uv[1][i];
             out.outcodes[first + i] = std::uint32_t(code[i]);
             std::int32_t* s = out.screen + 4 * (first + i);
-            s[0] = screen_x[i], s[1] = screen_y[i];
-            s[2] = std::bit_cast<std::int32_t>(depth[i]), s[3] = std::bit_cast<std::int32_t>(inv_w[i]);
+            s[0] = screen_x_lanes[i], s[1] = screen_y_lanes[i];
+            s[2] = std::bit_cast<std::int32_t>(depth_lanes[i]), s[3] = code[i];
         }
     }
 }

@@ -30,6 +30,7 @@ struct TileGrid {
 struct ChunkBins {
     std::vector<std::uint32_t> offsets;
     std::vector<std::uint32_t> items;  // indices into the chunk's triangles
+    std::vector<std::uint32_t> triangle_tile;  // build()'s scratch: each triangle's tile, if it touches only one
     std::span<const std::uint32_t> tile(int t) const {
         return {items.data() + offsets[t], items.data() + offsets[t + 1]};
     }

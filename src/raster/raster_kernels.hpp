@@ -100,25 +100,33 @@ void rasterize_general(simd::Isa isa, const RasterTriangle& t, std::uint32_t tri
 
 namespace tessera::raster {
 
-// Triangle setup over a batch of accepted triangles (triangle_setup_simd.cpp):
-// the culling decisions and the integer results of setup_triangle(), a vector
-// of triangles at a time; the caller writes the records of those kept.
+// Triangle assembly over a batch of a mesh's indexed triangles
+// (triangle_setup_simd.cpp), a vector of triangles at a time: the index check,
+// the outcode test (reject / accept / clip), face culling and the integer part
+// of setup_triangle(), and the records of the triangles it keeps. Triangles
+// that need clipping, or are too large for its int32 arithmetic, are left to
+// the scalar code, by bit; the caller merges them in submission order.
 inline constexpr int kSetupBatch = 64;  // triangles per call; a multiple of every lane count
 
 struct SetupBatchInput {
-    const std::int32_t* screen;  // the frame's ScreenVertex array seen as 4 int32 per vertex: x, y, (depth, inv_w)
-    std::int32_t ref[3][kSetupBatch];  // corner vertex references; lanes past count hold any valid reference
-    int count;
-    int width, height;  // viewport
+    const std::uint32_t* indices;   // 3 per triangle (count triangles), relative to first_vertex
+    const std::uint32_t* outcodes;  // the frame's, per vertex (geometry::outcode)
+    const std::int32_t* screen;     // the frame's ScreenVertex array seen as 4 int32 per vertex: x, y, depth, outcode
+    int count;                      // triangles, 1..kSetupBatch
+    std::int32_t first_vertex;      // the mesh's first frame vertex
+    std::int32_t vertex_count;      // > 0: an index at or past it drops its triangle
+    int width, height;              // viewport
+    int samples;                    // 1, or 4: pixel boxes and coverage by the 4× MSAA sample positions
+    Culling culling;
 };
 
-enum SetupVerdict : std::int32_t { kSetupDropped = 0, kSetupKept = 1, kSetupScalar = 2 };
-
 struct SetupBatchOutput {
-    std::int32_t verdict[kSetupBatch];  // SetupVerdict; kSetupScalar: too large for int32, set up one by one
-    std::int32_t swapped[kSetupBatch];  // nonzero: corners 1 and 2 trade places
-    std::int32_t double_area[kSetupBatch];
-    std::int32_t px_min[kSetupBatch], px_max[kSetupBatch], py_min[kSetupBatch], py_max[kSetupBatch];
+    std::uint64_t kept;     // bit i: triangle i was set up here; its record is the next in `records`
+    std::uint64_t scalar;   // bit i: inside the guard band but to be set up one by one (setup_triangle)
+    std::uint64_t clipped;  // bit i: crosses a clip plane (geometry::clip_triangle)
+    // Triangles neither kept, scalar nor clipped were dropped: a bad index, outside
+    // one plane or not finite, no area, culled, or covering no pixel centre.
+    RasterTriangle records[kSetupBatch];  // the kept triangles' records, in order (popcount(kept) of them)
 };
 
 #define TESSERA_DECLARE_SETUP_KERNEL(suffix) \

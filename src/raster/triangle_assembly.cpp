@@ -1,5 +1,8 @@
 #include "raster/triangle_assembly.hpp"
 
+#include <algorithm>
+#include <bit>
+
 #include "raster/raster_kernels.hpp"
 
 namespace tessera::raster {
@@ -8,94 +11,35 @@ namespace {
 
 static_assert(sizeof(geometry::ScreenVertex) == 4 * sizeof(std::int32_t), "the setup kernels read it as 4 int32");
 
-// Accepted triangles waiting for the setup kernel, kept in submission order.
-class SetupQueue {
-public:
-    SetupQueue(simd::Isa isa, const FrameVertices& frame, const geometry::Viewport& viewport, AssembledTriangles& out,
-               int samples, Culling culling)
-        : isa_(isa), frame_(frame), viewport_(viewport), out_(out), samples_(samples), culling_(culling) {
-        in_.screen = reinterpret_cast<const std::int32_t*>(frame.screen.data());
-        in_.count = 0;
-        in_.width = viewport.width;
-        in_.height = viewport.height;
+// What one triangle's assembly needs besides the triangle.
+struct AssemblyContext {
+    std::span<const std::uint32_t> indices;
+    std::uint32_t first_vertex;
+    const FrameVertices& frame;
+    geometry::Viewport viewport;
+    const geometry::GuardBand& guard;
+    AssembledTriangles& out;
+    int samples;
+    Culling culling;
+    std::span<const glm::vec4> colors;
+
+    // The corners' vertex references of triangle t (its indices in range).
+    std::array<std::uint32_t, 3> refs(std::size_t t) const {
+        return {first_vertex + indices[3 * t], first_vertex + indices[3 * t + 1], first_vertex + indices[3 * t + 2]};
     }
 
-    void push(const std::array<std::uint32_t, 3>& ref) {
-        if (isa_ == simd::Isa::scalar || samples_ != 1) return set_up_one(ref);
-        for (int k = 0; k < 3; ++k) in_.ref[k][in_.count] = std::int32_t(ref[k]);
-        if (++in_.count == kSetupBatch) flush();
-    }
-
-    // Sets up what is queued; called before anything else is appended, to keep the order.
-    void flush() {
-        if (in_.count == 0) return;
-        for (int i = in_.count; i < kSetupBatch; ++i)
-            for (int k = 0; k < 3; ++k) in_.ref[k][i] = in_.ref[k][0];  // spare lanes: any valid vertex
-        switch (isa_) {
-            case simd::Isa::sse4: setup_batch_sse4(in_, verdicts_); break;
-            case simd::Isa::avx2: setup_batch_avx2(in_, verdicts_); break;
-            case simd::Isa::avx512: setup_batch_avx512(in_, verdicts_); break;
-            case simd::Isa::scalar: break;
-        }
-        for (int i = 0; i < in_.count; ++i) {
-            std::array<std::uint32_t, 3> ref{std::uint32_t(in_.ref[0][i]), std::uint32_t(in_.ref[1][i]),
-                                             std::uint32_t(in_.ref[2][i])};
-            if (verdicts_.verdict[i] == kSetupScalar) set_up_one(ref);
-            if (verdicts_.verdict[i] != kSetupKept) continue;
-            // Kept means a non-zero area, negative where swapped: the scalar setup's culling test.
-            if (culled(culling_, verdicts_.swapped[i] ? -1 : 1)) continue;
-            if (verdicts_.swapped[i]) std::swap(ref[1], ref[2]);
-            RasterTriangle& t = out_.triangles.emplace_back();
-            for (int k = 0; k < 3; ++k) {
-                const geometry::ScreenVertex& v = frame_.screen[ref[k]];
-                t.x[k] = v.x, t.y[k] = v.y, t.depth[k] = v.depth, t.vertex[k] = ref[k];
-            }
-            t.inv_area = 1.0f / float(verdicts_.double_area[i]);  // as setup_triangle() computes it
-            t.px_min = std::int16_t(verdicts_.px_min[i]), t.px_max = std::int16_t(verdicts_.px_max[i]);
-            t.py_min = std::int16_t(verdicts_.py_min[i]), t.py_max = std::int16_t(verdicts_.py_max[i]);
-        }
-        in_.count = 0;
-    }
-
-private:
-    void set_up_one(const std::array<std::uint32_t, 3>& ref) {
+    // A triangle inside the guard band and the near and far planes.
+    void set_up(const std::array<std::uint32_t, 3>& ref) const {
         const auto set_up = setup_triangle(
-            viewport_, {frame_.screen[ref[0]], frame_.screen[ref[1]], frame_.screen[ref[2]]}, ref, samples_, culling_);
-        if (set_up) out_.triangles.push_back(*set_up);
+            viewport, {frame.screen[ref[0]], frame.screen[ref[1]], frame.screen[ref[2]]}, ref, samples, culling);
+        if (set_up) out.triangles.push_back(*set_up);
     }
 
-    simd::Isa isa_;
-    const FrameVertices& frame_;
-    geometry::Viewport viewport_;
-    AssembledTriangles& out_;
-    int samples_;
-    Culling culling_;
-    SetupBatchInput in_;
-    SetupBatchOutput verdicts_;
-};
-
-}  // namespace
-
-void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
-                        std::uint32_t vertex_count, const FrameVertices& frame,
-                        const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples, Culling culling, std::span<const glm::vec4> colors) {
-    SetupQueue queue(isa, frame, viewport, out, samples, culling);
-    geometry::ClippedPolygon polygon;
-    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
-        if (indices[t] >= vertex_count || indices[t + 1] >= vertex_count || indices[t + 2] >= vertex_count) continue;
-        const std::array<std::uint32_t, 3> ref{first_vertex + indices[t], first_vertex + indices[t + 1],
-                                               first_vertex + indices[t + 2]};
-        const std::uint32_t oc0 = frame.outcodes[ref[0]], oc1 = frame.outcodes[ref[1]], oc2 = frame.outcodes[ref[2]];
-        const geometry::ClipResult kind = geometry::classify_triangle(oc0, oc1, oc2);
-        if (kind == geometry::ClipResult::rejected) continue;
-        if (kind == geometry::ClipResult::accepted) {
-            queue.push(ref);
-            continue;
-        }
-        queue.flush();
-        geometry::clip_triangle(frame.vertices[ref[0]], frame.vertices[ref[1]], frame.vertices[ref[2]],
-                                (oc0 | oc1 | oc2) & geometry::kClipPlaneBits, guard, polygon);
+    // A triangle crossing the clip planes in `planes`: clipped into a fan.
+    void clip(std::size_t t, const std::array<std::uint32_t, 3>& ref, std::uint32_t planes) const {
+        geometry::ClippedPolygon polygon;
+        geometry::clip_triangle(frame.vertices[ref[0]], frame.vertices[ref[1]], frame.vertices[ref[2]], planes, guard,
+                                polygon);
         // Every new corner gets a reference into the clipped vertices.
         std::array<std::uint32_t, geometry::ClippedPolygon::kMaxCorners> corner_ref;
         for (int i = 0; i < polygon.count; ++i) {
@@ -106,8 +50,8 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
                 out.clipped_vertices.push_back(polygon.corners[i]);
                 if (!colors.empty()) {
                     const glm::vec3& w = polygon.weights[i];
-                    out.clipped_colors.push_back(w.x * colors[indices[t]] + w.y * colors[indices[t + 1]] +
-                                                 w.z * colors[indices[t + 2]]);
+                    out.clipped_colors.push_back(w.x * colors[indices[3 * t]] + w.y * colors[indices[3 * t + 1]] +
+                                                 w.z * colors[indices[3 * t + 2]]);
                 }
             }
         }
@@ -118,7 +62,85 @@ void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, s
             if (set_up) out.triangles.push_back(*set_up);
         }
     }
-    queue.flush();
+
+    std::uint32_t clip_planes(const std::array<std::uint32_t, 3>& ref) const {
+        return (frame.outcodes[ref[0]] | frame.outcodes[ref[1]] | frame.outcodes[ref[2]]) & geometry::kClipPlaneBits;
+    }
+};
+
+// The reference: one triangle at a time.
+void assemble_one_by_one(const AssemblyContext& c, std::uint32_t vertex_count) {
+    for (std::size_t t = 0; t < c.indices.size() / 3; ++t) {
+        if (c.indices[3 * t] >= vertex_count || c.indices[3 * t + 1] >= vertex_count ||
+            c.indices[3 * t + 2] >= vertex_count)
+            continue;
+        const std::array<std::uint32_t, 3> ref = c.refs(t);
+        const std::uint32_t oc0 = c.frame.outcodes[ref[0]], oc1 = c.frame.outcodes[ref[1]],
+                            oc2 = c.frame.outcodes[ref[2]];
+        const geometry::ClipResult kind = geometry::classify_triangle(oc0, oc1, oc2);
+        if (kind == geometry::ClipResult::accepted) c.set_up(ref);
+        if (kind == geometry::ClipResult::clipped) c.clip(t, ref, (oc0 | oc1 | oc2) & geometry::kClipPlaneBits);
+    }
+}
+
+// The ISA's kernel a batch of triangles at a time; what it leaves to the scalar
+// code (clipping, large triangles) is merged back in submission order.
+void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t vertex_count) {
+    const std::size_t triangle_count = c.indices.size() / 3;
+    if (vertex_count == 0 || triangle_count == 0) return;  // every index is out of range
+    SetupBatchInput in;
+    in.outcodes = c.frame.outcodes.data();
+    in.screen = reinterpret_cast<const std::int32_t*>(c.frame.screen.data());
+    in.first_vertex = std::int32_t(c.first_vertex);
+    in.vertex_count = std::int32_t(vertex_count);
+    in.width = c.viewport.width, in.height = c.viewport.height;
+    in.samples = c.samples;
+    in.culling = c.culling;
+    SetupBatchOutput batch;
+    std::array<std::uint32_t, 3 * kSetupBatch> tail;  // the last, partial batch, padded with index 0
+    for (std::size_t first = 0; first < triangle_count; first += kSetupBatch) {
+        in.count = int(std::min<std::size_t>(kSetupBatch, triangle_count - first));
+        in.indices = c.indices.data() + 3 * first;
+        if (in.count < kSetupBatch) {  // the kernel reads whole vectors of triangles
+            tail.fill(0);
+            std::copy_n(in.indices, 3 * in.count, tail.begin());
+            in.indices = tail.data();
+        }
+        switch (isa) {
+            case simd::Isa::sse4: setup_batch_sse4(in, batch); break;
+            case simd::Isa::avx2: setup_batch_avx2(in, batch); break;
+            case simd::Isa::avx512: setup_batch_avx512(in, batch); break;
+            case simd::Isa::scalar: return;  // not reached: the caller runs the scalar path
+        }
+        const std::uint64_t one_by_one = batch.scalar | batch.clipped;
+        if (one_by_one == 0) {
+            c.out.triangles.insert(c.out.triangles.end(), batch.records, batch.records + std::popcount(batch.kept));
+            continue;
+        }
+        int record = 0;
+        for (std::uint64_t bits = batch.kept | one_by_one; bits != 0; bits &= bits - 1) {
+            const int i = std::countr_zero(bits);
+            const std::uint64_t bit = std::uint64_t(1) << i;
+            if (batch.kept & bit) {
+                c.out.triangles.push_back(batch.records[record++]);
+                continue;
+            }
+            const std::array<std::uint32_t, 3> ref = c.refs(first + std::size_t(i));
+            if (batch.scalar & bit) c.set_up(ref);
+            else c.clip(first + std::size_t(i), ref, c.clip_planes(ref));
+        }
+    }
+}
+
+}  // namespace
+
+void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
+                        std::uint32_t vertex_count, const FrameVertices& frame,
+                        const geometry::Viewport& viewport, const geometry::GuardBand& guard,
+                        AssembledTriangles& out, int samples, Culling culling, std::span<const glm::vec4> colors) {
+    const AssemblyContext context{indices, first_vertex, frame, viewport, guard, out, samples, culling, colors};
+    if (isa == simd::Isa::scalar) assemble_one_by_one(context, vertex_count);
+    else assemble_in_batches(isa, context, vertex_count);
 }
 
 }  // namespace tessera::raster

@@ -18,7 +18,7 @@ namespace tessera::raster {
 struct FrameVertices {
     std::span<const geometry::ShadedVertex> vertices;
     std::span<const std::uint32_t> outcodes;          // geometry::outcode() of each vertex
-    std::span<const geometry::ScreenVertex> screen;   // valid where the outcode has no clip-plane bit
+    std::span<const geometry::ScreenVertex> screen;   // its outcode is outcodes[i]; x, y, depth valid where that has no clip-plane bit
 };
 
 struct AssembledTriangles {
@@ -30,11 +30,11 @@ struct AssembledTriangles {
 
 // Appends to `out` the triangles of `indices` (three per triangle, relative to
 // `first_vertex`; an index >= vertex_count drops its triangle) that survive
-// culling, clipping and setup, in order. Accepted
-// triangles use the precomputed screen vertices and are set up a vector at a
-// time with the ISA's kernels (the same result as one by one); clipped ones
-// become fans. samples: 1, or 4 for 4× MSAA (set up one by one: the kernels
-// test pixel centres only). culling: which windings setup drops (clipping
+// culling, clipping and setup, in order. With a SIMD ISA, the index check,
+// the outcode test, culling and setup run a vector of triangles at a time
+// (the same result as the scalar path's one by one); triangles that cross a
+// clip plane (fans) or are large are merged in from the scalar code.
+// samples: 1, or 4 for 4× MSAA. culling: which windings setup drops (clipping
 // keeps a triangle's winding, so its pieces are culled alike). colors: the
 // mesh's vertex colours (indexed like `indices`) or empty; a corner clipping
 // makes gets its colour interpolated as its other attributes are.

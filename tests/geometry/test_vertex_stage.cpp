@@ -103,7 +103,8 @@ TEST_CASE("the vertex stage gives the scalar result bit for bit with every ISA's
             std::size_t mismatched = 0;
             for (std::size_t i = 0; i < count; ++i) {
                 bool ok = same_bits(&vertices[i], &expected[i], sizeof(geometry::ShadedVertex)) &&
-                          codes[i] == expected_codes[i];
+                          codes[i] == expected_codes[i] && screen[i].outcode == codes[i] &&
+                          expected_screen[i].outcode == expected_codes[i];
                 // The screen position means something only where no plane clips the vertex.
                 if (!(expected_codes[i] & (geometry::kClipPlaneBits | geometry::kNotFinite)))
                     ok = ok && same_bits(&screen[i], &expected_screen[i], sizeof(geometry::ScreenVertex));

@@ -12,7 +12,7 @@ using namespace tessera;
 
 namespace {
 
-geometry::ScreenVertex at(float x, float y) { return {std::int32_t(x * 256), std::int32_t(y * 256), 0.5f, 1.0f}; }
+geometry::ScreenVertex at(float x, float y) { return {std::int32_t(x * 256), std::int32_t(y * 256), 0.5f, 0}; }
 
 }  // namespace
 

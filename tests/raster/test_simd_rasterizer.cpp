@@ -175,7 +175,7 @@ namespace {
 std::optional<raster::RasterTriangle> fixed_triangle(std::array<glm::ivec2, 3> p, int image,
                                                      const std::array<float, 3>& depth) {
     std::array<raster::ScreenVertex, 3> corners;
-    for (int k = 0; k < 3; ++k) corners[k] = {p[k].x, p[k].y, depth[k], 1.0f};
+    for (int k = 0; k < 3; ++k) corners[k] = {p[k].x, p[k].y, depth[k], 0};
     return raster::setup_triangle({image, image}, corners, {0, 1, 2});
 }
 

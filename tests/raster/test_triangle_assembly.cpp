@@ -38,7 +38,7 @@ TEST_CASE("assembling triangles with every ISA's setup kernel gives the scalar r
             if (t % 7 == 0) x = std::floor(x) + 0.5f, y = std::floor(y) + 0.5f;  // corners on pixel centres: ties
             if (t % 11 == 0 && k == 2) x = screen[screen.size() - 1].x / 256.0f, y = screen[screen.size() - 1].y / 256.0f;  // no area
             indices.push_back(std::uint32_t(screen.size()));
-            screen.push_back({std::int32_t(std::lrint(x * 256)), std::int32_t(std::lrint(y * 256)), depth(rng), 1.0f + unit(rng)});
+            screen.push_back({std::int32_t(std::lrint(x * 256)), std::int32_t(std::lrint(y * 256)), depth(rng), 0});
         }
     }
     const std::vector<std::uint32_t> outcodes(screen.size(), 0);  // all inside: every triangle goes to setup
@@ -64,4 +64,95 @@ TEST_CASE("assembling triangles with every ISA's setup kernel gives the scalar r
             different += !same(assembled.triangles[i], reference.triangles[i]);
         CHECK(different == 0);
     }
+}
+
+// The whole of assembly through the kernels: index checks, the outcode test
+// (rejected, accepted, clipped: the kernels hand clipped and large triangles
+// back to the scalar code, which must merge them in submission order), face
+// culling and 4× MSAA, from a mesh that does not start at vertex 0 and with a
+// last batch shorter than the kernels' vectors.
+TEST_CASE("assembly through every ISA's kernel equals the scalar path: clipping, bad indices, culling, MSAA") {
+    const geometry::Viewport viewport{320, 200};
+    const geometry::GuardBand guard(viewport.width, viewport.height);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    constexpr std::uint32_t kFirstVertex = 5;  // vertices of an earlier mesh come first
+    std::vector<geometry::ShadedVertex> vertices(kFirstVertex);
+    std::vector<std::uint32_t> indices;
+    std::vector<glm::vec4> colors;  // per mesh vertex
+    std::size_t behind = 0, outside_guard = 0, not_finite = 0;
+    for (int t = 0; t < 6001; ++t) {
+        // Clusters of every size around a point on or off screen; each corner at its own w.
+        const float spread = std::array<float, 4>{0.01f, 0.05f, 0.4f, 3.0f}[t % 4];
+        const float cx = -1.3f + 2.6f * unit(rng), cy = -1.3f + 2.6f * unit(rng);
+        for (int k = 0; k < 3; ++k) {
+            const float w = 0.5f + 4.0f * unit(rng);
+            glm::vec4 ndc(cx + spread * (unit(rng) - 0.5f), cy + spread * (unit(rng) - 0.5f), 2.0f * unit(rng) - 1.0f, 1);
+            if (t % 13 == 0 && k == 1) ndc.z = -1.5f, ++behind;         // in front of the near plane
+            if (t % 17 == 0 && k == 2) ndc.x = 400.0f, ++outside_guard;  // far past the guard band
+            geometry::ShadedVertex v{};
+            v.clip_pos = glm::vec4(glm::vec3(ndc) * w, w);
+            v.world_pos = glm::vec3(unit(rng), unit(rng), unit(rng));
+            v.normal = glm::vec3(0, 0, 1);
+            if (t % 29 == 0 && k == 0) v.normal.x = std::nanf(""), ++not_finite;
+            v.uv = glm::vec2(unit(rng), unit(rng));
+            colors.emplace_back(unit(rng), unit(rng), unit(rng), 1.0f);
+            std::uint32_t index = std::uint32_t(vertices.size()) - kFirstVertex;
+            if (t % 31 == 0 && k == 1) index = std::uint32_t(6001 * 3 + t);  // out of range
+            if (t % 37 == 0 && k == 2) index = 0x8000'0000u + std::uint32_t(t);  // negative as int32
+            if (t % 5 == 0 && k == 0 && t > 0) index = indices[indices.size() - 2];  // shared with the last triangle
+            indices.push_back(index);
+            vertices.push_back(v);
+        }
+    }
+    REQUIRE(behind > 100);
+    REQUIRE(outside_guard > 100);
+    REQUIRE(not_finite > 100);
+    const std::uint32_t vertex_count = std::uint32_t(vertices.size()) - kFirstVertex;
+    std::vector<std::uint32_t> outcodes(vertices.size());
+    std::vector<geometry::ScreenVertex> screen(vertices.size());
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        outcodes[i] = geometry::outcode(vertices[i], guard);
+        if (!(outcodes[i] & (geometry::kClipPlaneBits | geometry::kNotFinite)))
+            screen[i] = geometry::to_screen(vertices[i].clip_pos, viewport);
+        screen[i].outcode = outcodes[i];
+    }
+    const raster::FrameVertices frame{vertices, outcodes, screen};
+
+    for (const int samples : {1, 4})
+        for (const raster::Culling culling :
+             {raster::Culling::none, raster::Culling::drop_positive_area, raster::Culling::drop_negative_area}) {
+            CAPTURE(samples);
+            CAPTURE(int(culling));
+            raster::AssembledTriangles reference;
+            raster::assemble_triangles(simd::Isa::scalar, indices, kFirstVertex, vertex_count, frame, viewport, guard,
+                                       reference, samples, culling, colors);
+            std::size_t clipped = 0;
+            for (const raster::RasterTriangle& t : reference.triangles)
+                clipped += (t.vertex[0] | t.vertex[1] | t.vertex[2]) >= geometry::kClippedVertexBit;
+            REQUIRE(reference.triangles.size() > 1000);
+            REQUIRE(clipped > 50);  // clipped pieces sit between the kernel's triangles
+            for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+                CAPTURE(simd::isa_name(isa));
+                if (!simd::isa_supported(isa)) {
+                    MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+                    continue;
+                }
+                raster::AssembledTriangles assembled;
+                // Two runs, one of them cut into pieces that end off a batch boundary.
+                raster::assemble_triangles(isa, std::span(indices).first(3 * 1001), kFirstVertex, vertex_count, frame,
+                                           viewport, guard, assembled, samples, culling, colors);
+                raster::assemble_triangles(isa, std::span(indices).subspan(3 * 1001), kFirstVertex, vertex_count,
+                                           frame, viewport, guard, assembled, samples, culling, colors);
+                REQUIRE(assembled.triangles.size() == reference.triangles.size());
+                int different = 0;
+                for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
+                    different += !same(assembled.triangles[i], reference.triangles[i]);
+                CHECK(different == 0);
+                REQUIRE(assembled.clipped_vertices.size() == reference.clipped_vertices.size());
+                CHECK(std::memcmp(assembled.clipped_vertices.data(), reference.clipped_vertices.data(),
+                                  assembled.clipped_vertices.size() * sizeof(geometry::ShadedVertex)) == 0);
+                CHECK(assembled.clipped_colors == reference.clipped_colors);
+            }
+        }
 }

@@ -93,7 +93,7 @@ std::vector<std::array<ScreenVertex, 3>> random_triangles(std::mt19937& rng, con
         std::array<ScreenVertex, 3> corners;
         for (int k = 0; k < 3; ++k) {
             const glm::vec2 q = (p[k] + offset) * float(geometry::kSubpixelScale);
-            corners[k] = {std::int32_t(std::lrintf(q.x)), std::int32_t(std::lrintf(q.y)), depth + depth_slope(rng), 1.0f};
+            corners[k] = {std::int32_t(std::lrintf(q.x)), std::int32_t(std::lrintf(q.y)), depth + depth_slope(rng), 0};
         }
         if (visible_only && !raster::setup_triangle(viewport, corners, {0, 1, 2})) continue;
         triangles.push_back(corners);
