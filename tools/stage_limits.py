@@ -32,27 +32,29 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# Counted by hand in shade_kernels_simd.cpp's point-light path (to_light, range test,
-# 1/|d| with sqrt and divide, half vector, three dots, GGX and Schlick-GGX denominators,
-# Fresnel weight, three channels' Fresnel and accumulation): ~80 lane operations, two of
-# them square roots and two divisions, which issue far slower than an FMA.
-DEFAULT_OPS_PER_FRAGMENT_LIGHT = 80
+# Counted by hand in shade_kernels_simd.cpp's point-light path (README, "Many lights"): ~47
+# operations on the multiply-add pipes per fragment·light (1/|d| by rsqrt and a Newton step,
+# the unnormalized half vector, the one division of the specular fraction, the Fresnel
+# weight, nine colour × term accumulations), plus a division and a square root that hold
+# the pipes about as long as ~9 more: 56 issue slots.
+DEFAULT_OPS_PER_FRAGMENT_LIGHT = 56
 
 
 def machine_limits(path):
     rows = json.load(open(path))["benchmarks"]
     limits = {}
     for row in rows:
-        if row.get("error_occurred") or row.get("run_type") == "aggregate":
+        # With --benchmark_repetitions, the median row stands for the repetitions.
+        if row.get("error_occurred") or row.get("aggregate_name", "median") != "median":
             continue
-        name = row["name"]  # machine/flops/avx2/real_time/threads:1
+        name = row["name"].removesuffix("_median")  # machine/flops/avx2/real_time/threads:1
         parts = name.split("/")
         threads = int(parts[-1].split(":")[1])
-        # Google Benchmark reports a threaded run's rate per thread; the machine's is the sum.
+        # A threaded run's rate is that of all its threads together (items summed over threads, per second).
         if parts[1] == "flops":
-            limits[("flops", parts[2], threads)] = row["items_per_second"] * threads
+            limits[("flops", parts[2], threads)] = row["items_per_second"]
         elif parts[1] == "memory":
-            limits[("memory", parts[2], threads)] = row["bytes_per_second"] * threads
+            limits[("memory", parts[2], threads)] = row["bytes_per_second"]
     return limits
 
 
