@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
+#include "simd/lane_helpers.hpp"
 
 #include "raster/msaa_kernels.hpp"
 #include "raster/msaa_pattern.hpp"
@@ -40,31 +41,9 @@ struct LaneOffsets {
 };
 constexpr LaneOffsets kLane;
 
-// Which lanes of a comparison hold: bit i for lane i. Hand-written: xsimd 8.1
-// has no movemask.
-[[gnu::always_inline]] inline unsigned lane_bits(const IntMask& b) {
-#if XSIMD_WITH_AVX512F
-    return unsigned(b.data);
-#elif XSIMD_WITH_AVX2
-    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(b)));
-#else
-    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(b)));
-#endif
-}
+using simd::lane_bits;
+using simd::round_to_float;
 
-// Two vectors of doubles (lanes 0..n/2-1, n/2..n-1) rounded to one of floats.
-// Hand-written: xsimd 8.1 has no conversion between batches of different lane
-// counts.
-[[gnu::always_inline]] inline Float round_to_float(const Double& lo, const Double& hi) {
-#if XSIMD_WITH_AVX512F
-    const __m512d low = _mm512_castpd256_pd512(_mm256_castps_pd(_mm512_cvtpd_ps(lo)));
-    return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm512_cvtpd_ps(hi)), 1));
-#elif XSIMD_WITH_AVX
-    return _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
-#else
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
-#endif
-}
 
 // The barycentric numerators E1, E2 in double where they leave int32
 // (MsaaWideWeights): per lane the row's value plus the lane's offset, exact

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
+#include "simd/lane_helpers.hpp"
 
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
@@ -19,26 +20,11 @@ using Float = xsimd::batch<float, Arch>;
 
 using Double = xsimd::batch<double, Arch>;
 static_assert(Int::size <= kMaxRasterLanes && Double::size * 2 == Float::size);
+using simd::lane_bits;
+using simd::round_to_float;
 
 alignas(64) constexpr std::int32_t kLaneIndex[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
 alignas(64) constexpr double kLaneIndexDouble[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-
-// Two vectors of doubles (lanes 0..n/2-1, n/2..n-1) rounded to one of floats.
-// Hand-written: xsimd 8.1 has no conversion between batches of different lane
-// counts.
-Float round_to_float(const Double& lo, const Double& hi) {
-#if XSIMD_WITH_AVX512F
-    static_assert(Float::size == 16);
-    const __m512d low = _mm512_castpd256_pd512(_mm256_castps_pd(_mm512_cvtpd_ps(lo)));
-    return _mm512_castpd_ps(_mm512_insertf64x4(low, _mm256_castps_pd(_mm512_cvtpd_ps(hi)), 1));
-#elif XSIMD_WITH_AVX
-    static_assert(Float::size == 8);
-    return _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
-#else
-    static_assert(Float::size == 4);
-    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
-#endif
-}
 
 // kCovered: every pixel of the block is inside, only the depth test remains.
 // kWideWeights: barycentric numerators in double (see EdgeBlock32).
@@ -125,18 +111,6 @@ struct Stamp {
     static_assert(kWidth == 4 || kWidth == 8 || kWidth == 16);
     static_assert(kWidth <= kMaxRasterLanes, "a stamp's loads past a row's end stay in the tile buffers' padding");
 };
-
-// Which lanes of a comparison hold: bit i for lane i. Hand-written: xsimd 8.1
-// has no movemask.
-[[gnu::always_inline]] inline unsigned lane_bits(const xsimd::batch_bool<std::int32_t, Arch>& b) {
-#if XSIMD_WITH_AVX512F
-    return unsigned(b.data);
-#elif XSIMD_WITH_AVX2
-    return unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(b)));
-#else
-    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(b)));
-#endif
-}
 
 // kColumns int32 from each of kRows rows (row r at base + offset[r]) into one
 // vector, and back. Hand-written: xsimd 8.1 loads and stores whole vectors only.
