@@ -6,8 +6,8 @@
 # same machine noise):
 #   clustered  this build: ranges cut per pixel, lights culled per tile and per cluster
 #   none       this build with --no-light-culling: every light at every pixel
-#   baseline   BASELINE=path/to/tessera, a build from before clustered culling (per-tile
-#              culling: commit 0ba3df5 or older); left out when BASELINE is not set
+#   baseline   BASELINE=path/to/tessera, any other build (e.g. commit 0ba3df5, per-tile
+#              culling, or an older shading kernel); left out when BASELINE is not set
 #   [BASELINE=old/tessera] [ROUNDS=5] [FRAMES=3] [LIGHTS="256 1024"] [THREADS="1 2"] \
 #     tools/bench_many_lights.sh
 # Prints each round, then per configuration the median over rounds of each variant's
