@@ -254,7 +254,10 @@ template <int kWidth>
     StampEdges edges;
     for (int k = 0; k < 3; ++k) {
         edges.e[k] = Int(b.row[k] - b.bias[k]) + ox * Int(b.step_x[k]) + oy * Int(b.step_y[k]);
-        edges.across[k] = Int(S::kLanes * b.step_x[k]);
+        // A 4-wide stamp is one vector across: no step across, whose product
+        // (lanes × step_x) stamp_fits_int32 does not bound and could overflow.
+        static_assert(S::kVectors == 1);
+        edges.across[k] = Int(0);
         edges.down[k] = Int(S::kRows * b.step_y[k]);
         edges.threshold[k] = Int(-1 - b.bias[k]);
     }
