@@ -121,7 +121,7 @@ public:
             // triangles keep exactly one test per fragment.
             colored_or_blended_ = c_.color[0] != nullptr || c_.material->alpha_mode == AlphaMode::blend;
             beyond_plain_ = textured_ || colored_or_blended_;
-            // As the viewport transform computed it (ScreenVertex::inv_w).
+            // 1 / clip w, as the viewport transform computes it (geometry/viewport.hpp).
             for (int k = 0; k < 3; ++k) inv_w_[k] = 1.0f / c_.corner[k]->clip_pos.w;
             world0_ = c_.corner[0]->world_pos;
             world_d1_ = c_.corner[1]->world_pos - world0_, world_d2_ = c_.corner[2]->world_pos - world0_;
