@@ -193,10 +193,10 @@ EdgeRange sample_range(const EdgeStepper& e, int width, int height) {
                               EdgeStepper(t.x[2], t.y[2], t.x[0], t.y[0], px, py),
                               EdgeStepper(t.x[0], t.y[0], t.x[1], t.y[1], px, py)};
     const int width = x_end - x_begin, height = y_end - y_begin;
-    MsaaBlock32 block;
+    EdgeBlock32 block;
     bool fits = true;
     for (int k = 0; k < 3; ++k) fits = fits && msaa_edge_fits_int32(e[k], width, height);
-    MsaaWideWeights weights;
+    WideWeights weights;
     for (int k = 0; k < 3; ++k) {
         block.bias[k] = std::int32_t(e[k].bias);
         if (fits) {

@@ -46,7 +46,7 @@ using simd::round_to_float;
 
 
 // The barycentric numerators E1, E2 in double where they leave int32
-// (MsaaWideWeights): per lane the row's value plus the lane's offset, exact
+// (WideWeights): per lane the row's value plus the lane's offset, exact
 // integers, so float(E) rounds once as the scalar loop's float(int64) does.
 struct WideLanes {
     Double offset_lo[2], offset_hi[2];  // the lanes' offsets from the vector's first pixel centre
@@ -119,7 +119,7 @@ template <bool kWide>
 
 }  // namespace
 
-void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const MsaaBlock32& b, const MsaaWideWeights* weights,
+void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const EdgeBlock32& b, const WideWeights* weights,
                                               const SampleView& tile, RasterCounters& counters) {
     // E is affine: E at a lane's sample = E at the block's first pixel centre
     // + (step_x / 256) · offset x + (step_y / 256) · offset y, exact in int32
