@@ -14,9 +14,7 @@ namespace {
 // Triangle setup for 4× MSAA straight from fixed-point corners (24.8, image y down).
 std::optional<raster::RasterTriangle> msaa_fixed_triangle(std::array<glm::ivec2, 3> p, int image,
                                                           const std::array<float, 3>& depth) {
-    std::array<raster::ScreenVertex, 3> corners;
-    for (int k = 0; k < 3; ++k) corners[k] = {p[k].x, p[k].y, depth[k], 0};
-    return raster::setup_triangle({image, image}, corners, {0, 1, 2}, raster::kMsaaSamples);
+    return test::fixed_triangle(p, image, depth, raster::kMsaaSamples);
 }
 
 struct MsaaResult {
@@ -126,34 +124,12 @@ TEST_CASE("4x MSAA: every ISA's rasterizer gives bit-identical samples to the sc
 TEST_CASE("4x MSAA: a mesh of tiny triangles sharing edges gives bit-identical samples in every ISA") {
     constexpr int kTile = 32, kImage = 128;
     std::mt19937 rng(91);
-    std::uniform_int_distribution<int> jitter(-60, 60);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int pitch : {192, 320, 512}) {  // grid step in fixed point: 0.75, 1.25, 2 px
         CAPTURE(pitch);
         const int n = 40 * 256 / pitch;
-        std::vector<glm::ivec2> grid;
-        std::vector<float> depth;
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) {
-                glm::ivec2 p{28 * 256 + i * pitch, 28 * 256 + j * pitch};
-                if ((i + j) % 3) p += glm::ivec2{jitter(rng), jitter(rng)};  // others stay on the grid: ties
-                grid.push_back(p);
-                depth.push_back(0.3f + 0.4f * unit(rng));
-            }
-        std::vector<raster::RasterTriangle> triangles;
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-                for (const auto& [u, v, w] : {std::array<int, 3>{a, b, d}, std::array<int, 3>{a, d, c}})
-                    if (auto t = msaa_fixed_triangle({grid[u], grid[v], grid[w]}, kImage, {depth[u], depth[v], depth[w]}))
-                        triangles.push_back(*t);
-            }
-        const std::size_t layer = triangles.size();
-        for (std::size_t i = 0; i < layer; ++i) {
-            raster::RasterTriangle t = triangles[i];
-            for (float& z : t.depth) z = i % 2 ? z + 0.1f : 0.5f;
-            triangles.push_back(t);
-        }
+        std::size_t layer = 0;
+        const std::vector<raster::RasterTriangle> triangles =
+            test::jittered_mesh(rng, pitch, n, kImage, raster::kMsaaSamples, layer);
         const raster::TileRect tile{32, 32, 32 + kTile, 32 + kTile};
         MsaaResult reference = check_msaa_isas_match_scalar(triangles, tile, kTile);
         CHECK(covered_samples(reference, tile, kTile) == raster::kMsaaSamples * kTile * kTile);  // watertight

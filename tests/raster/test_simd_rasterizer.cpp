@@ -169,17 +169,7 @@ TEST_CASE("block hierarchy: huge triangles, slivers and ties on block borders ma
     }
 }
 
-namespace {
-
-// Triangle setup straight from fixed-point corners (24.8, image y down).
-std::optional<raster::RasterTriangle> fixed_triangle(std::array<glm::ivec2, 3> p, int image,
-                                                     const std::array<float, 3>& depth) {
-    std::array<raster::ScreenVertex, 3> corners;
-    for (int k = 0; k < 3; ++k) corners[k] = {p[k].x, p[k].y, depth[k], 0};
-    return raster::setup_triangle({image, image}, corners, {0, 1, 2});
-}
-
-}  // namespace
+using test::fixed_triangle;
 
 // Boxes at most 4 pixels wide go to the stamp kernel (4 × 1, 4 × 2 or 4 × 4
 // pixels per vector by ISA): its lanes past the box's right end and rows
@@ -298,36 +288,12 @@ TEST_CASE("tiny triangles up to 16 px wide: 8- and 16-wide stamps match the scal
 TEST_CASE("a mesh of tiny triangles sharing edges: every ISA matches the scalar loop") {
     constexpr int kTile = 32, kImage = 128;
     std::mt19937 rng(77);
-    std::uniform_int_distribution<int> jitter(-60, 60);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     // Grid steps in fixed point: 1.25, 1.5, 2 px (4-wide stamps), 5 px (8-wide), 11 px (16-wide).
     for (int pitch : {320, 384, 512, 1280, 2816}) {
         CAPTURE(pitch);
         const int n = 40 * 256 / pitch + 1;  // past the tile's far side
-        std::vector<glm::ivec2> grid;
-        std::vector<float> depth;
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) {
-                glm::ivec2 p{28 * 256 + i * pitch, 28 * 256 + j * pitch};
-                if ((i + j) % 3) p += glm::ivec2{jitter(rng), jitter(rng)};  // others stay on the grid: ties
-                grid.push_back(p);
-                depth.push_back(0.3f + 0.4f * unit(rng));
-            }
-        std::vector<raster::RasterTriangle> triangles;
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-                for (const auto& [u, v, w] : {std::array<int, 3>{a, b, d}, std::array<int, 3>{a, d, c}})
-                    if (auto t = fixed_triangle({grid[u], grid[v], grid[w]}, kImage, {depth[u], depth[v], depth[w]}))
-                        triangles.push_back(*t);
-            }
-        // A second layer behind and one in front of the first, crossing it at depth ties now and then.
-        const std::size_t layer = triangles.size();
-        for (std::size_t i = 0; i < layer; ++i) {
-            raster::RasterTriangle t = triangles[i];
-            for (float& z : t.depth) z = i % 2 ? z + 0.1f : 0.5f;
-            triangles.push_back(t);
-        }
+        std::size_t first_layer = 0;
+        const std::vector<raster::RasterTriangle> triangles = test::jittered_mesh(rng, pitch, n, kImage, 1, first_layer);
         const raster::TileBuffers reference = check_isas_match_scalar(triangles, {32, 32, 32 + kTile, 32 + kTile});
         int covered = 0;
         for (std::size_t p = 0; p < std::size_t(kTile) * kTile; ++p) covered += reference.covered(p);
