@@ -85,8 +85,16 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_radiance_rows)(const MsaaResolveRows& rows)
         const __m256 quarter = _mm256_set1_ps(0.25f);
         // Two pixels a step; 4 floats stored per pixel (the 4th overwritten
         // by the next pixel), so the pair stops before the row's last pixel.
+        // Two background pixels: the mean of four equal values is that value
+        // (2c, 4c and c/4 are exact), so they store the background's, ungathered.
+        const __m128 clear_pixel = _mm_setr_ps(rows.clear_radiance[0], rows.clear_radiance[1], rows.clear_radiance[2], 0.0f);
         for (; x + 2 < rows.width; x += 2) {
             const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fragment + 4 * x));
+            if (_mm256_testc_si256(index, _mm256_set1_epi32(-1))) {  // all eight samples -1
+                _mm_storeu_ps(out + 3 * x, clear_pixel);
+                _mm_storeu_ps(out + 3 * x + 3, clear_pixel);
+                continue;
+            }
             const __m256 shaded = _mm256_castsi256_ps(_mm256_cmpgt_epi32(index, _mm256_set1_epi32(-1)));
             __m256 v[3];
             for (int c = 0; c < 3; ++c)
