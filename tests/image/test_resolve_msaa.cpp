@@ -42,26 +42,27 @@ TEST_CASE("resolve_tile_msaa: every ISA writes the scalar loop's radiance and di
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const image::ClearValues clear = image::clear_values(glm::vec3(0.2f, 0.6f, 0.9f));
     int compared = 0;
-    for (const bool background_runs : {false, true}) {
+    for (const bool runs : {false, true}) {
         for (int side = raster::kMinTileSize; side <= raster::kMaxTileSize; side *= 2) {
             for (const glm::ivec2 cut : {glm::ivec2(0, 0), glm::ivec2(1, 3), glm::ivec2(7, 1), glm::ivec2(side - 1, 0)}) {
                 const raster::TileRect rect{side, 2 * side, 2 * side - cut.x, 3 * side - cut.y};
                 CAPTURE(side);
                 CAPTURE(rect.width());
                 CAPTURE(rect.height());
-                CAPTURE(background_runs);
+                CAPTURE(runs);
                 raster::TileSamples samples;
                 samples.reset(side);
                 // Pixels fully background, fully one fragment (interior), or mixed (edges).
                 std::int32_t count = 0;
                 for (int p = 0; p < side * side; ++p) {
                     std::int32_t* f = &samples.fragment[std::size_t(n) * p];
-                    // With background_runs, runs of 8 pixels are background only
-                    // (as beside an object), at every offset to the vectors' 8 pixels.
+                    // With runs, runs of 8 pixels are background only (as beside
+                    // an object), then 8 interior ones, then 8 mixed, at every
+                    // offset to the vectors' 8 pixels.
                     const int x = p % side, y = p / side;
-                    const bool run = background_runs && ((x + y) / 8 + y) % 3 == 0;
-                    const float kind = unit(rng);
-                    if (run || kind < 0.2f) {
+                    const int run = runs ? ((x + y) / 8 + y) % 3 : 2;
+                    const float kind = run == 0 ? 0.0f : run == 1 ? 0.5f : unit(rng);
+                    if (kind < 0.2f) {
                         for (int s = 0; s < n; ++s) f[s] = -1;
                     } else if (kind < 0.6f) {
                         for (int s = 0; s < n; ++s) f[s] = count;
