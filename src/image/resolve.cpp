@@ -109,6 +109,30 @@ void write_display(simd::Isa isa, const raster::TileBuffers& coverage, const ras
     }
 }
 
+// The radiance rows of a tile: covered pixels take the next shaded value, the
+// others the background's.
+void write_radiance(simd::Isa isa, const raster::TileBuffers& coverage, const raster::TileRect& rect,
+                    const shade::RadianceOutputs& shaded, const ClearValues& clear, RenderedImage& image) {
+    if (isa == simd::Isa::scalar) {
+        const glm::vec3& clear_radiance = clear.radiance;
+        return for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
+            float* radiance = &image.radiance[i];
+            if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];
+            else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
+        });
+    }
+    const RadianceRows rows{coverage.depth.data(), coverage.side, rect.width(), rect.height(),
+                            {shaded.r, shaded.g, shaded.b}, {clear.radiance.r, clear.radiance.g, clear.radiance.b},
+                            &image.radiance[3 * (std::size_t(rect.y0) * image.width + rect.x0)],
+                            3 * std::size_t(image.width)};
+    switch (isa) {
+        case simd::Isa::sse4: return write_radiance_rows_sse4(rows);
+        case simd::Isa::avx2: return write_radiance_rows_avx2(rows);
+        case simd::Isa::avx512: return write_radiance_rows_avx512(rows);
+        case simd::Isa::scalar: break;
+    }
+}
+
 }  // namespace
 
 ClearValues clear_values(const glm::vec3& clear_color) {
@@ -147,12 +171,7 @@ void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRec
 void resolve_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect, std::size_t count,
                   const shade::RadianceOutputs& shaded, const ClearValues& clear, simd::Isa isa,
                   RenderedImage& image) {
-    const glm::vec3& clear_radiance = clear.radiance;
-    if (!image.radiance.empty()) for_each_pixel(coverage, rect, image.width, [&](std::size_t i, bool covered, std::size_t k) {
-        float* radiance = &image.radiance[i];
-        if (covered) radiance[0] = shaded.r[k], radiance[1] = shaded.g[k], radiance[2] = shaded.b[k];
-        else radiance[0] = clear_radiance.r, radiance[1] = clear_radiance.g, radiance[2] = clear_radiance.b;
-    });
+    if (!image.radiance.empty()) write_radiance(isa, coverage, rect, shaded, clear, image);
     if (count == 0) return clear_tile_display(rect, clear, image);
     encode_display_unorm8(isa, count, shaded.r, shaded.g, shaded.b);
     write_display(isa, coverage, rect, count, shaded.r, packed_clear(clear), image);

@@ -85,8 +85,16 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_radiance_rows)(const MsaaResolveRows& rows)
         const __m256 quarter = _mm256_set1_ps(0.25f);
         // Two pixels a step; 4 floats stored per pixel (the 4th overwritten
         // by the next pixel), so the pair stops before the row's last pixel.
+        // Two background pixels: the mean of four equal values is that value
+        // (2c, 4c and c/4 are exact), so they store the background's, ungathered.
+        const __m128 clear_pixel = _mm_setr_ps(rows.clear_radiance[0], rows.clear_radiance[1], rows.clear_radiance[2], 0.0f);
         for (; x + 2 < rows.width; x += 2) {
             const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(fragment + 4 * x));
+            if (_mm256_testc_si256(index, _mm256_set1_epi32(-1))) {  // all eight samples -1
+                _mm_storeu_ps(out + 3 * x, clear_pixel);
+                _mm_storeu_ps(out + 3 * x + 3, clear_pixel);
+                continue;
+            }
             const __m256 shaded = _mm256_castsi256_ps(_mm256_cmpgt_epi32(index, _mm256_set1_epi32(-1)));
             __m256 v[3];
             for (int c = 0; c < 3; ++c)
@@ -130,7 +138,21 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_display_rows)(const MsaaResolveRows& rows) 
         const __m256i pack_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
                                                     0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
         const __m256i join_halves = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 3, 7);
+        // Eight pixels of the clear colour, packed as the loop below stores them.
+        const __m256i clear_rgb = _mm256_permutevar8x32_epi32(
+            _mm256_shuffle_epi8(_mm256_set1_epi32(std::int32_t(rows.clear_display)), pack_bytes), join_halves);
         for (; x + 8 <= rows.width; x += 8) {
+            // Eight pixels whose 32 samples all show the background (common
+            // beside the objects in a tile) are the clear colour: no gathers.
+            const __m256i* indices = reinterpret_cast<const __m256i*>(fragment + 4 * x);
+            const __m256i all_samples =
+                _mm256_and_si256(_mm256_and_si256(_mm256_loadu_si256(indices), _mm256_loadu_si256(indices + 1)),
+                                 _mm256_and_si256(_mm256_loadu_si256(indices + 2), _mm256_loadu_si256(indices + 3)));
+            if (_mm256_testc_si256(all_samples, _mm256_set1_epi32(-1))) {  // every index -1
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 3 * x), _mm256_castsi256_si128(clear_rgb));
+                _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 3 * x + 16), _mm256_extracti128_si256(clear_rgb, 1));
+                continue;
+            }
             __m256i low[4], high[4];
             for (int p = 0; p < 4; ++p) {
                 const __m256i v = pixel_pair_samples(rows, fragment + 4 * (x + 2 * p));

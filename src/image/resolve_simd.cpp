@@ -3,7 +3,9 @@
 // goes 8 pixels at a time: their coverage mask picks a permutation that
 // spreads the next covered pixels' colours over the covered lanes (an expand:
 // AVX-512's vpexpandd, built here from vpermd and a table), and a byte
-// shuffle packs 8 RGBX pixels into 24 RGB bytes. Hand-written intrinsics:
+// shuffle packs 8 RGBX pixels into 24 RGB bytes. Radiance rows spread three
+// float planes the same way and interleave them into 24 RGB floats.
+// Hand-written intrinsics:
 // xsimd 8.1 has neither the masked load, the permutation nor byte shuffles.
 #include <bit>
 #include <cstring>
@@ -39,6 +41,15 @@ inline void write_tail(PixelCursor& cursor, const float* depth, std::uint8_t* di
     }
     const std::uint32_t last = cursor.next(depth[width - 1]);
     std::memcpy(display + 3 * (width - 1), &last, 3);
+}
+
+// Pixels [x, width) of a radiance row, branch-free as PixelCursor.
+inline void write_radiance_tail(const RadianceRows& rows, std::size_t& k, const float* depth, float* out, int x) {
+    for (; x < rows.width; ++x) {
+        const bool covered = depth[x] < 1.0f;
+        for (int c = 0; c < 3; ++c) out[3 * x + c] = *(covered ? rows.plane[c] + k : &rows.clear[c]);
+        k += covered;
+    }
 }
 
 #if defined(__AVX2__)
@@ -91,6 +102,52 @@ void TESSERA_SIMD_ENTRY(write_display_rows)(const DisplayRows& rows) {
         }
 #endif
         if (x < rows.width) write_tail(cursor, depth, display, x, rows.width);
+    }
+}
+
+void TESSERA_SIMD_ENTRY(write_radiance_rows)(const RadianceRows& rows) {
+    std::size_t k = 0;  // covered pixels met so far
+    const float* depth = rows.depth;
+    float* out = rows.radiance;
+    for (int y = 0; y < rows.height; ++y, depth += rows.side, out += rows.stride) {
+        int x = 0;
+#if defined(__AVX2__)
+        const __m256 one = _mm256_set1_ps(1.0f);
+        const __m256i lane = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLaneIndex));
+        __m256 clear[3];
+        for (int c = 0; c < 3; ++c) clear[c] = _mm256_set1_ps(rows.clear[c]);
+        // Output float j of 8 interleaved pixels is pixel j / 3's channel j % 3:
+        // each 8-float store takes its pixels from every plane by one permutation,
+        // then its channels by two blends (set bits: the later operand).
+        const __m256i first = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);   // floats 0-7
+        const __m256i second = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);  // floats 8-15
+        const __m256i third = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);   // floats 16-23
+        for (; x + 8 <= rows.width; x += 8) {
+            const __m256 covered_lanes = _mm256_cmp_ps(_mm256_loadu_ps(depth + x), one, _CMP_LT_OQ);
+            const unsigned mask = unsigned(_mm256_movemask_ps(covered_lanes));
+            const int covered = std::popcount(mask);
+            const __m256i take = _mm256_cmpgt_epi32(_mm256_set1_epi32(covered), lane);
+            const __m256i spread = _mm256_load_si256(reinterpret_cast<const __m256i*>(kExpand.lane[mask]));
+            __m256 v[3];
+            for (int c = 0; c < 3; ++c) {
+                const __m256 next = _mm256_maskload_ps(rows.plane[c] + k, take);
+                v[c] = _mm256_blendv_ps(clear[c], _mm256_permutevar8x32_ps(next, spread), covered_lanes);
+            }
+            k += std::size_t(covered);
+            // The channel at positions 0 3 6 of the store, then 1 4 7 (the next
+            // channel), then 2 5 (the last).
+            const auto interleave = [&](const __m256i& pixels, int at036, int at25) {
+                const __m256 a = _mm256_permutevar8x32_ps(v[at036], pixels);
+                const __m256 b = _mm256_permutevar8x32_ps(v[(at036 + 1) % 3], pixels);
+                const __m256 c = _mm256_permutevar8x32_ps(v[at25], pixels);
+                return _mm256_blend_ps(_mm256_blend_ps(a, b, 0x92), c, 0x24);
+            };
+            _mm256_storeu_ps(out + 3 * x, interleave(first, 0, 2));
+            _mm256_storeu_ps(out + 3 * x + 8, interleave(second, 2, 1));
+            _mm256_storeu_ps(out + 3 * x + 16, interleave(third, 1, 0));
+        }
+#endif
+        write_radiance_tail(rows, k, depth, out, x);
     }
 }
 

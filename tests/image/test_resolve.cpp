@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -43,8 +44,10 @@ std::uint8_t channel(const RenderedImage& image, int x, int y, int c) {
 }  // namespace
 
 // resolve_tile writes each covered pixel's reference 8-bit colour, and the
-// clear colour elsewhere, whatever the ISA; pixels outside the tile stay put.
-TEST_CASE("resolve_tile: every ISA writes the reference's 8-bit colours") {
+// clear colour elsewhere, whatever the ISA; the radiance image gets each
+// covered pixel's shaded value and the background's elsewhere, bit for bit;
+// pixels outside the tile stay put.
+TEST_CASE("resolve_tile: every ISA writes the reference's 8-bit colours and the shaded radiance") {
     constexpr int kSide = 32;
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -70,15 +73,18 @@ TEST_CASE("resolve_tile: every ISA writes the reference's 8-bit colours") {
             RenderedImage image;
             image.width = rect.x1 + 5, image.height = rect.y1 + 2;
             image.display.assign(3 * std::size_t(image.width) * image.height, 7);
+            image.radiance.assign(3 * std::size_t(image.width) * image.height, -7.0f);
             Shaded shaded = input;
             image::resolve_tile(tile, rect, count, shaded.outputs(), clear, isa, image);
-            int wrong = 0, outside_touched = 0;
+            int wrong = 0, wrong_radiance = 0, outside_touched = 0;
             std::size_t k = 0;
             for (int y = 0; y < image.height; ++y)
                 for (int x = 0; x < image.width; ++x) {
                     const bool inside = x >= rect.x0 && x < rect.x1 && y >= rect.y0 && y < rect.y1;
+                    const std::size_t i = 3 * (std::size_t(y) * image.width + x);
                     if (!inside) {
-                        for (int c = 0; c < 3; ++c) outside_touched += channel(image, x, y, c) != 7;
+                        for (int c = 0; c < 3; ++c)
+                            outside_touched += channel(image, x, y, c) != 7 || image.radiance[i + c] != -7.0f;
                         continue;
                     }
                     const bool covered = tile.covered(std::size_t(y - rect.y0) * kSide + (x - rect.x0));
@@ -87,10 +93,14 @@ TEST_CASE("resolve_tile: every ISA writes the reference's 8-bit colours") {
                         const std::uint8_t expected =
                             covered ? image::unorm8_from_radiance_reference(plane[k]) : clear.display[c];
                         wrong += channel(image, x, y, c) != expected;
+                        const float radiance = covered ? plane[k] : clear.radiance[c];
+                        wrong_radiance += std::bit_cast<std::uint32_t>(image.radiance[i + c]) !=
+                                          std::bit_cast<std::uint32_t>(radiance);
                     }
                     k += covered;
                 }
             CHECK(wrong == 0);
+            CHECK(wrong_radiance == 0);
             CHECK(outside_touched == 0);
         }
     }

@@ -18,8 +18,9 @@ namespace {
 // A 32×32 tile (the renderer's default) of a 1280×720 frame, `coverage` of its
 // pixels covered at random, as a mesh of tiny triangles leaves them; radiance
 // log-uniform over the range a lit scene has. resolve_tile overwrites the red
-// channel, so each iteration restores it (a 4 KB copy, timed too).
-void bench_resolve(benchmark::State& state, Isa isa, double coverage) {
+// channel, so each iteration restores it (a 4 KB copy, timed too). With
+// radiance, the image keeps the radiance too, as for EXR output.
+void bench_resolve(benchmark::State& state, Isa isa, double coverage, bool radiance) {
     if (skip_if_unsupported(state, isa)) return;
     constexpr int kSide = 32;
     const raster::TileRect rect{640, 352, 640 + kSide, 352 + kSide};
@@ -37,6 +38,7 @@ void bench_resolve(benchmark::State& state, Isa isa, double coverage) {
     RenderedImage image;
     image.width = 1280, image.height = 720;
     image.display.resize(3 * std::size_t(image.width) * image.height);
+    if (radiance) image.radiance.resize(image.display.size());
     const image::ClearValues clear = image::clear_values(glm::vec3(0.1f));
     for (auto _ : state) {
         std::copy(r_saved.begin(), r_saved.end(), r.begin());
@@ -49,11 +51,13 @@ void bench_resolve(benchmark::State& state, Isa isa, double coverage) {
 }
 
 [[maybe_unused]] const bool registered = [] {
-    for (const Isa isa : kIsas)
-        for (const int percent : {27, 100})
-            benchmark::RegisterBenchmark(
-                ("resolve/" + std::string(simd::isa_name(isa)) + "/coverage:" + std::to_string(percent)).c_str(),
-                bench_resolve, isa, percent / 100.0);
+    for (const bool radiance : {false, true})
+        for (const Isa isa : kIsas)
+            for (const int percent : {27, 100})
+                benchmark::RegisterBenchmark((std::string(radiance ? "resolve_radiance/" : "resolve/") +
+                                              std::string(simd::isa_name(isa)) + "/coverage:" + std::to_string(percent))
+                                                 .c_str(),
+                                             bench_resolve, isa, percent / 100.0, radiance);
     return true;
 }();
 
