@@ -61,10 +61,11 @@ public:
             if (t.material != run_material) [[unlikely]]
                 run_material = start_run(t, i);
             const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w, lambda1, lambda2);
-            const glm::vec3 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
-            const glm::vec3 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
-            world_x[i] = world.x, world_y[i] = world.y, world_z[i] = world.z;
-            normal_x[i] = normal.x, normal_y[i] = normal.y, normal_z[i] = normal.z;
+            // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+            const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
+            const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
+            world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
+            normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
             if (t.beyond_plain) [[unlikely]] {
                 const auto [x, y] = xy_of(i);
                 add_extras_at(i, slot, x, y, lambda1, lambda2, b1, b2);
@@ -89,10 +90,11 @@ private:
         t.textured = c.material->has_maps();
         t.beyond_plain = t.textured || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
         for (int k = 0; k < 3; ++k) t.inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
-        t.world0 = c.corner[0]->world_pos;
-        t.world_d1 = c.corner[1]->world_pos - t.world0, t.world_d2 = c.corner[2]->world_pos - t.world0;
-        t.normal0 = c.corner[0]->normal;
-        t.normal_d1 = c.corner[1]->normal - t.normal0, t.normal_d2 = c.corner[2]->normal - t.normal0;
+        const glm::vec3 world0 = c.corner[0]->world_pos, normal0 = c.corner[0]->normal;
+        t.world0 = float4_from(world0);
+        t.world_d1 = float4_from(c.corner[1]->world_pos - world0), t.world_d2 = float4_from(c.corner[2]->world_pos - world0);
+        t.normal0 = float4_from(normal0);
+        t.normal_d1 = float4_from(c.corner[1]->normal - normal0), t.normal_d2 = float4_from(c.corner[2]->normal - normal0);
         if (t.beyond_plain) {
             GatheredTriangleExtras& e = table_.extras[slot];
             e.corners = c;
@@ -121,7 +123,8 @@ private:
         material_filled_ = i + 1;
         const GatheredTriangle& t = table_.entry[slot];
         const GatheredTriangleExtras& e = table_.extras[slot];
-        const SurfaceInterpolants interpolants{t.inv_w, t.world_d1, t.world_d2, e.uv0, e.uv_d1, e.uv_d2};
+        const glm::vec3 world_d1 = vec3_from(t.world_d1), world_d2 = vec3_from(t.world_d2);
+        const SurfaceInterpolants interpolants{t.inv_w, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
         add_extras(e.corners, interpolants, x, y, lambda1, lambda2, b1, b2, out_, i);
     }
 
@@ -135,11 +138,11 @@ private:
 }  // namespace detail
 
 // Whether a tile's triangles are large enough for the fast gather: it pays
-// where the tile's rows meet a triangle several times (the spheres at 4K: ~20
-// pixels per triangle drawn); where triangles cover a pixel or two (the
-// spheres at 720p) its table only adds work, and the reference gather is a
-// little faster (measured on scenes/spheres.toml, README "The gather").
-inline bool fast_gather_pays(std::size_t pixels, std::size_t triangles) { return triangles * 8 <= pixels; }
+// where the tile's rows meet a triangle several times (the spheres at 4K, ~11
+// pixels per rasterized triangle in a drawn tile); where triangles cover a
+// pixel or two (the spheres at 720p, ~2) its table only adds work and the
+// reference loop is a little faster. `triangles`: rasterized into the tile.
+inline bool fast_gather_pays(std::size_t pixels, std::size_t triangles) { return triangles * 4 <= pixels; }
 
 // gather_surface_points (surface_gather.hpp) with `isa`'s gather: the
 // reference for Isa::scalar and for tiles of small triangles (triangles: how
