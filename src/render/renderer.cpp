@@ -518,7 +518,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
         scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
-                isa, s.tile_triangles, s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
+                isa, s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -550,7 +550,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 return triangle_of(id);
             }, s.sample_fragments);
             return shade::gather_surface_points(
-                isa, s.tile_triangles, std::size_t(rect.width()) * rect.height(), s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
+                isa, s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -635,7 +635,7 @@ void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& c
     raster::BlendFragments& fragments = s.blend_fragments;
     const auto shade_and_blend = [&] {
         const std::size_t count = shade::gather_surface_points(
-            isa, s.tile_triangles, std::size_t(rect.width()) * rect.height(), fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
+            isa, fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
         shade_tile(scene, count, s);
         image::blend_over(fragments, count, s.fragments.outputs(), s.fragments.channel(shade::FragmentBuffer::alpha),
                           s.blend_radiance);

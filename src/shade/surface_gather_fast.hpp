@@ -7,8 +7,15 @@
 //    spheres at 4K ~3.7 times per visible triangle;
 //  - plain fragments (untextured, no vertex colours, not blended) get their
 //    material's six channels filled per run of one material, not per fragment;
-//  - the setup and the run changes stay out of line, so the per-fragment loop
-//    keeps its state in registers.
+//  - the covered pixels are listed without a branch per pixel;
+//  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
+//    same IEEE operations per component as the reference's glm;
+//  - the set-up, the run changes and the extras stay out of line, so the
+//    per-fragment loop keeps its state in registers; its one unpredictable
+//    branch is the table's miss, once per triangle of the tile.
+// Textured, vertex-coloured and blended fragments get the reference's scalar
+// extras (detail::add_extras, a copy of SurfaceGather's, kept equal by
+// tests/shade/test_surface_gather.cpp).
 #pragma once
 
 #include <utility>
@@ -46,17 +53,13 @@ public:
         const std::uint64_t* const tags = table_.tag.data();
         const GatheredTriangle* const entries = table_.entry.data();
         const Material* run_material = nullptr;
-        std::uint32_t last_id = raster::kNoTriangle;
-        std::size_t slot = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const std::uint32_t id = id_of(i);
             const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
-            if (id != last_id) {
-                last_id = id;
-                slot = TriangleTable::slot(id);
-                if (tags[slot] != (key_base | id)) [[unlikely]]
-                    set_up(slot, id, key_base);
-            }
+            // Mispredicted once per triangle of the tile, not at every change of triangle.
+            const std::size_t slot = TriangleTable::slot(id);
+            if (tags[slot] != (key_base | id)) [[unlikely]]
+                set_up(slot, id, key_base);
             const GatheredTriangle& t = entries[slot];
             if (t.material != run_material) [[unlikely]]
                 run_material = start_run(t, i);
@@ -137,22 +140,13 @@ private:
 
 }  // namespace detail
 
-// Whether a tile's triangles are large enough for the fast gather: it pays
-// where the tile's rows meet a triangle several times (the spheres at 4K, ~11
-// pixels per rasterized triangle in a drawn tile); where triangles cover a
-// pixel or two (the spheres at 720p, ~2) its table only adds work and the
-// reference loop is a little faster. `triangles`: rasterized into the tile.
-inline bool fast_gather_pays(std::size_t pixels, std::size_t triangles) { return triangles * 4 <= pixels; }
-
 // gather_surface_points (surface_gather.hpp) with `isa`'s gather: the
-// reference for Isa::scalar and for tiles of small triangles (triangles: how
-// many were rasterized into the tile), the fast one above elsewhere; the same
+// reference for Isa::scalar, the fast one above for the others; the same
 // fragments, runs and bits either way.
 template <class Lookup>
-std::size_t gather_surface_points(Isa isa, std::size_t triangles, const raster::TileBuffers& tile, int width,
-                                  int height, Lookup&& lookup, FragmentBuffer& out, std::vector<MaterialRun>& runs) {
-    if (isa == Isa::scalar || !fast_gather_pays(std::size_t(width) * height, triangles))
-        return gather_surface_points(tile, width, height, lookup, out, runs);
+std::size_t gather_surface_points(Isa isa, const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs) {
+    if (isa == Isa::scalar) return gather_surface_points(tile, width, height, lookup, out, runs);
     // The covered pixels, in the reference's order, without a branch per pixel.
     std::uint32_t* const pixels = out.triangle_table().pixels.data();
     std::size_t count = 0;
@@ -171,14 +165,11 @@ std::size_t gather_surface_points(Isa isa, std::size_t triangles, const raster::
         [&](std::size_t i) { return std::pair<int, int>(int(pixels[i]) % side, int(pixels[i]) / side); });
 }
 
-// The same for a fragment list (4× MSAA, blending), whose fragments lie in a
-// tile of `pixels` pixels.
+// The same for a fragment list (4× MSAA, blending).
 template <class Lookup>
-std::size_t gather_surface_points(Isa isa, std::size_t triangles, std::size_t pixels,
-                                  const raster::TileFragments& fragments, Lookup&& lookup, FragmentBuffer& out,
-                                  std::vector<MaterialRun>& runs) {
-    if (isa == Isa::scalar || !fast_gather_pays(pixels, triangles))
-        return gather_surface_points(fragments, lookup, out, runs);
+std::size_t gather_surface_points(Isa isa, const raster::TileFragments& fragments, Lookup&& lookup,
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs) {
+    if (isa == Isa::scalar) return gather_surface_points(fragments, lookup, out, runs);
     detail::FastSurfaceGather<std::remove_reference_t<Lookup>> gather(lookup, out, runs);
     return gather.gather(
         fragments.count, [&](std::size_t i) { return fragments.triangle[i]; },

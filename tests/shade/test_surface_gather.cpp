@@ -22,10 +22,8 @@ namespace {
 using namespace tessera;
 using namespace tessera::shade;
 
-// Any ISA but scalar runs the fast gather (plain C++, the same for every ISA);
-// a triangle count of 0 says the tile's triangles are large.
+// Any ISA but scalar runs the fast gather (plain C++, the same for every ISA).
 constexpr Isa kFast = Isa::avx2;
-constexpr std::size_t kLargeTriangles = 0;
 constexpr float kUnwritten = -777.25f;  // every channel starts so in both buffers
 
 // A random mesh's worth of shaded vertices, materials and triangles, and the
@@ -175,7 +173,7 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
                 tile.depth[pixel] = 0.5f, tile.triangle[pixel] = ids.next(), tile.lambda1[pixel] = l1, tile.lambda2[pixel] = l2;
             }
         fill_unwritten(reference);
-        const std::size_t count = gather_surface_points(Isa::scalar, kLargeTriangles, tile, width, height, lookup,
+        const std::size_t count = gather_surface_points(Isa::scalar, tile, width, height, lookup,
                                                         reference, reference_runs);
         fragments += count;
         for (const MaterialRun& run : reference_runs) {
@@ -184,13 +182,8 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
         }
         fill_unwritten(fast);
         const std::size_t fast_count =
-            gather_surface_points(kFast, kLargeTriangles, tile, width, height, lookup, fast, fast_runs);
+            gather_surface_points(kFast, tile, width, height, lookup, fast, fast_runs);
         check_same_fragments(count, reference, reference_runs, fast_count, fast, fast_runs);
-        // A tile of small triangles takes the reference's own loop: the same again.
-        fill_unwritten(fast);
-        const std::size_t small_count =
-            gather_surface_points(kFast, std::size_t(kSide) * kSide, tile, width, height, lookup, fast, fast_runs);
-        check_same_fragments(count, reference, reference_runs, small_count, fast, fast_runs);
     }
     CHECK(extras > 1000);  // the textured and blended paths were exercised
     CHECK(materials_seen == (std::size_t(1) << scene.materials.size()) - 1);
@@ -222,11 +215,11 @@ TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the refere
         list.count = count;
         fill_unwritten(reference);
         const std::size_t gathered =
-            gather_surface_points(Isa::scalar, kLargeTriangles, kSide * kSide, list, lookup, reference, reference_runs);
+            gather_surface_points(Isa::scalar, list, lookup, reference, reference_runs);
         REQUIRE(gathered == count);
         fill_unwritten(fast);
         const std::size_t fast_count =
-            gather_surface_points(kFast, kLargeTriangles, kSide * kSide, list, lookup, fast, fast_runs);
+            gather_surface_points(kFast, list, lookup, fast, fast_runs);
         check_same_fragments(gathered, reference, reference_runs, fast_count, fast, fast_runs);
     }
 }
@@ -249,7 +242,7 @@ TEST_CASE("the gathers interpolate perspective-correctly and apply vertex colour
         const auto [l1, l2] = random_lambdas(rng);
         list.x = {1}, list.y = {2}, list.triangle = {id}, list.lambda1 = {l1}, list.lambda2 = {l2}, list.count = 1;
         for (const Isa isa : {Isa::scalar, kFast}) {
-            REQUIRE(gather_surface_points(isa, kLargeTriangles, 16, list, lookup, out, runs) == 1);
+            REQUIRE(gather_surface_points(isa, list, lookup, out, runs) == 1);
             const TriangleCorners c = scene.corners(id);
             const double q[3] = {(1.0 - l1 - l2) / c.corner[0]->clip_pos.w, l1 / c.corner[1]->clip_pos.w,
                                  l2 / c.corner[2]->clip_pos.w};
