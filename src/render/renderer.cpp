@@ -31,7 +31,7 @@
 #include "shade/light_culling.hpp"
 #include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
-#include "shade/surface_gather.hpp"
+#include "shade/surface_gather_fast.hpp"
 
 namespace tessera {
 
@@ -238,7 +238,12 @@ struct Renderer::Frame {
     // corners are fetched now, while the rest of the tile rasterizes, instead
     // of stalling the gather (they lie scattered through the frame's vertices).
     void prefetch_corners(const render::Chunk& chunk, const raster::RasterTriangle& t) const {
-        for (int k = 0; k < 3; ++k) __builtin_prefetch(&chunk.vertex(t.vertex[k], vertices));
+        for (int k = 0; k < 3; ++k) {
+            // A 48-byte vertex straddles two cache lines at half the 16-byte offsets: fetch both.
+            const char* v = reinterpret_cast<const char*>(&chunk.vertex(t.vertex[k], vertices));
+            __builtin_prefetch(v);
+            __builtin_prefetch(v + sizeof(geometry::ShadedVertex) - 1);
+        }
     }
 };
 
@@ -513,7 +518,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
         scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
-                s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
+                isa, s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -545,7 +550,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 return triangle_of(id);
             }, s.sample_fragments);
             return shade::gather_surface_points(
-                s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
+                isa, s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -630,7 +635,7 @@ void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& c
     raster::BlendFragments& fragments = s.blend_fragments;
     const auto shade_and_blend = [&] {
         const std::size_t count = shade::gather_surface_points(
-            fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
+            isa, fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
         shade_tile(scene, count, s);
         image::blend_over(fragments, count, s.fragments.outputs(), s.fragments.channel(shade::FragmentBuffer::alpha),
                           s.blend_radiance);

@@ -3,6 +3,8 @@
 // structure-of-arrays batch the shading kernels take.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <type_traits>
@@ -15,6 +17,56 @@
 #include "tessera/scene.hpp"
 
 namespace tessera::shade {
+
+// A visible triangle as the gather needs it.
+struct TriangleCorners {
+    const geometry::ShadedVertex* corner[3];
+    const Material* material;
+    // Textured materials only. Screen-space barycentrics are affine in the
+    // pixel position: their change per pixel right and per pixel down.
+    float lambda1_dx = 0, lambda1_dy = 0, lambda2_dx = 0, lambda2_dy = 0;
+    const glm::vec4* tangent[3] = {nullptr, nullptr, nullptr};  // world-space tangents where the mesh has them
+    // Linear RGBA vertex colours (Mesh::colors) where the mesh has them; they
+    // multiply the albedo (and alpha), interpolated perspective-correctly.
+    const glm::vec4* color[3] = {nullptr, nullptr, nullptr};
+};
+
+// The fast gather's per-tile table of the triangles it has met: each set up
+// once per tile (its corners looked up, 1/w and the differences worked out),
+// though the tile's rows meet it several times. Direct-mapped on the id; a
+// tile starts with no valid entry (an epoch in each tag).
+//
+// A vec3 is kept as (x, y, z, 0) in a 4-float vector (GCC's vector extension,
+// one SSE register): its lane-wise IEEE operations give glm's bits per
+// component, in a third of the instructions.
+using Float4 = float __attribute__((vector_size(16)));
+inline Float4 float4_from(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0f}; }
+inline glm::vec3 vec3_from(const Float4& v) { return {v[0], v[1], v[2]}; }
+struct alignas(64) GatheredTriangle {
+    Float4 world0, world_d1, world_d2, normal0, normal_d1, normal_d2;
+    std::array<float, 3> inv_w;
+    const Material* material;
+    bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
+};
+struct GatheredTriangleExtras {
+    TriangleCorners corners;
+    glm::vec2 uv0, uv_d1, uv_d2;
+};
+struct TriangleTable {
+    static constexpr std::size_t kSize = 512;
+    std::vector<std::uint64_t> tag;  // epoch << 32 | triangle id
+    std::vector<GatheredTriangle> entry;
+    std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
+    std::uint32_t epoch = 0;
+    std::vector<std::uint32_t> pixels;  // the covered pixels of a one-sample tile
+
+    // Forgets every entry (valid ones have this epoch).
+    void start_tile() {
+        if (tag.empty()) tag.assign(kSize, 0), entry.resize(kSize), extras.resize(kSize);
+        if (++epoch == 0) std::fill(tag.begin(), tag.end(), 0), epoch = 1;
+    }
+    static std::size_t slot(std::uint32_t id) { return (id ^ (id >> 11) ^ (id >> 17)) & (kSize - 1); }
+};
 
 // Storage for one tile's fragments: shade_fragments' inputs and outputs, and
 // for textured materials their texture coordinates with screen-space
@@ -45,6 +97,11 @@ public:
         channels_[albedo_r][i] = m.albedo.r, channels_[albedo_g][i] = m.albedo.g, channels_[albedo_b][i] = m.albedo.b;
         channels_[metallic][i] = m.metallic, channels_[roughness][i] = m.roughness, channels_[ao][i] = m.ao;
     }
+    // Material channels of fragments [begin, end), all of material m.
+    void set_material(std::size_t begin, std::size_t end, const Material& m) {
+        const float values[] = {m.albedo.r, m.albedo.g, m.albedo.b, m.metallic, m.roughness, m.ao};
+        for (int k = 0; k < 6; ++k) std::fill(channels_[albedo_r + k].data() + begin, channels_[albedo_r + k].data() + end, values[k]);
+    }
     float* channel(Channel c) { return channels_[c].data(); }
     const float* channel(Channel c) const { return channels_[c].data(); }
     // Fills the lanes from count to padded_count(count) with copies of a real
@@ -53,9 +110,12 @@ public:
     FragmentInputs inputs(std::size_t count) const;
     RadianceOutputs outputs();
 
+    TriangleTable& triangle_table() { return triangles_; }
+
 private:
     std::size_t capacity_ = 0;
     std::vector<float> channels_[kChannels];
+    TriangleTable triangles_;  // the fast gather's (surface_gather_fast.hpp)
 };
 
 // Fragments [begin, end) of a FragmentBuffer that share one material.
@@ -63,19 +123,6 @@ struct MaterialRun {
     std::uint32_t begin = 0, end = 0;
     const Material* material = nullptr;
     bool textured = false;  // the material has maps: texture coordinates and derivatives were gathered
-};
-
-// A visible triangle as the gather needs it.
-struct TriangleCorners {
-    const geometry::ShadedVertex* corner[3];
-    const Material* material;
-    // Textured materials only. Screen-space barycentrics are affine in the
-    // pixel position: their change per pixel right and per pixel down.
-    float lambda1_dx = 0, lambda1_dy = 0, lambda2_dx = 0, lambda2_dy = 0;
-    const glm::vec4* tangent[3] = {nullptr, nullptr, nullptr};  // world-space tangents where the mesh has them
-    // Linear RGBA vertex colours (Mesh::colors) where the mesh has them; they
-    // multiply the albedo (and alpha), interpolated perspective-correctly.
-    const glm::vec4* color[3] = {nullptr, nullptr, nullptr};
 };
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`,
@@ -101,6 +148,59 @@ std::size_t gather_surface_points(const raster::TileFragments& fragments, Lookup
                                   std::vector<MaterialRun>& runs);
 
 namespace detail {
+
+// What the extras of a fragment need of its triangle beyond TriangleCorners.
+struct SurfaceInterpolants {
+    const std::array<float, 3>& inv_w;
+    const glm::vec3 &world_d1, &world_d2;
+    const glm::vec2 &uv0, &uv_d1, &uv_d2;
+};
+
+// Vertex colours multiply the gathered albedo (fragment i's material channels
+// must be written); blended materials get their alpha.
+inline void add_color_and_alpha(const TriangleCorners& c, float b1, float b2, FragmentBuffer& out, std::size_t i) {
+    using C = FragmentBuffer;
+    float alpha = c.material->alpha_factor;
+    if (c.color[0]) {
+        const glm::vec4 color0 = *c.color[0];
+        const glm::vec4 color = color0 + b1 * (*c.color[1] - color0) + b2 * (*c.color[2] - color0);
+        for (int k = 0; k < 3; ++k) out.channel(C::Channel(C::albedo_r + k))[i] *= color[k];
+        alpha *= color.a;
+    }
+    if (c.material->alpha_mode == AlphaMode::blend) out.channel(C::alpha)[i] = alpha;
+}
+
+// The textured materials' inputs, vertex colours, blended alpha of fragment i,
+// at tile pixel (x, y), screen-space λ1 λ2, perspective-correct b1 b2.
+inline void add_extras(const TriangleCorners& c, const SurfaceInterpolants& t, int x, int y, float lambda1,
+                       float lambda2, float b1, float b2, FragmentBuffer& out, std::size_t i) {
+    using C = FragmentBuffer;
+    if (c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend) add_color_and_alpha(c, b1, b2, out, i);
+    if (!c.material->has_maps()) return;
+    const glm::vec2 uv = t.uv0 + b1 * t.uv_d1 + b2 * t.uv_d2;
+    // The quad partners: the pixel beside this one in the quad's row and in its column.
+    const float step_x = (x & 1) ? -1.0f : 1.0f, step_y = (y & 1) ? -1.0f : 1.0f;
+    const auto [bx1, bx2] =
+        raster::perspective_barycentrics(t.inv_w, lambda1 + step_x * c.lambda1_dx, lambda2 + step_x * c.lambda2_dx);
+    const auto [by1, by2] =
+        raster::perspective_barycentrics(t.inv_w, lambda1 + step_y * c.lambda1_dy, lambda2 + step_y * c.lambda2_dy);
+    // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
+    const glm::vec2 duv_dx = step_x * ((bx1 - b1) * t.uv_d1 + (bx2 - b2) * t.uv_d2);
+    const glm::vec2 duv_dy = -step_y * ((by1 - b1) * t.uv_d1 + (by2 - b2) * t.uv_d2);
+    const glm::vec3 dp_dx = step_x * ((bx1 - b1) * t.world_d1 + (bx2 - b2) * t.world_d2);
+    const glm::vec3 dp_dy = -step_y * ((by1 - b1) * t.world_d1 + (by2 - b2) * t.world_d2);
+    const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
+                            dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
+    for (int k = 0; k < 12; ++k) out.channel(C::Channel(C::u + k))[i] = values[k];
+    glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
+    if (c.tangent[0] && c.tangent[1] && c.tangent[2]) {
+        const float b0 = 1.0f - b1 - b2;
+        tangent = glm::vec4(
+            glm::vec3(*c.tangent[0]) * b0 + glm::vec3(*c.tangent[1]) * b1 + glm::vec3(*c.tangent[2]) * b2,
+            c.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
+    }
+    for (int k = 0; k < 4; ++k) out.channel(C::Channel(C::tangent_x + k))[i] = tangent[k];
+}
 
 // The gather's state: the cached triangle, the fragments and runs written so far.
 template <class Lookup>

@@ -1,0 +1,180 @@
+// The gather the SIMD ISAs run: the same fragments, runs and bits as the
+// reference gather (surface_gather.hpp), which `--isa scalar` runs, with less
+// work per triangle and per fragment:
+//  - a triangle is set up (looked up, 1/w and the corner differences worked
+//    out) once per tile, in a per-tile table (TriangleTable), where the
+//    reference does it at every change of triangle along a row — on the
+//    spheres at 4K ~3.7 times per visible triangle;
+//  - plain fragments (untextured, no vertex colours, not blended) get their
+//    material's six channels filled per run of one material, not per fragment;
+//  - the covered pixels are listed without a branch per pixel;
+//  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
+//    same IEEE operations per component as the reference's glm;
+//  - the set-up, the run changes and the extras stay out of line, so the
+//    per-fragment loop keeps its state in registers; its one unpredictable
+//    branch is the table's miss, once per triangle of the tile.
+// Textured, vertex-coloured and blended fragments get the reference's scalar
+// extras (detail::add_extras, a copy of SurfaceGather's, kept equal by
+// tests/shade/test_surface_gather.cpp).
+#pragma once
+
+#include <utility>
+
+#include "shade/surface_gather.hpp"
+
+namespace tessera::shade {
+
+namespace detail {
+
+// The fast gather's state between fragments; the loop over fragments
+// (gather_fragments) keeps its own in locals, and calls out of line only at a
+// triangle the tile has not met yet, a change of material, and extras.
+template <class Lookup>
+class FastSurfaceGather {
+public:
+    FastSurfaceGather(Lookup& lookup, FragmentBuffer& out, std::vector<MaterialRun>& runs)
+        : lookup_(lookup), out_(out), runs_(runs), table_(out.triangle_table()) {
+        runs_.clear();
+        table_.start_tile();
+    }
+
+    // Gathers fragments k < count: fragment k is triangle id(k) at tile pixel
+    // xy(k) = (x, y) (asked only for extras), screen-space λ1 λ2 lambda1(k), lambda2(k).
+    template <class Id, class Lambda1, class Lambda2, class Xy>
+    std::size_t gather(std::size_t count, Id&& id_of, Lambda1&& lambda1_of, Lambda2&& lambda2_of, Xy&& xy_of) {
+        using C = FragmentBuffer;
+        float* const world_x = out_.channel(C::world_x);
+        float* const world_y = out_.channel(C::world_y);
+        float* const world_z = out_.channel(C::world_z);
+        float* const normal_x = out_.channel(C::normal_x);
+        float* const normal_y = out_.channel(C::normal_y);
+        float* const normal_z = out_.channel(C::normal_z);
+        const std::uint64_t key_base = std::uint64_t(table_.epoch) << 32;
+        const std::uint64_t* const tags = table_.tag.data();
+        const GatheredTriangle* const entries = table_.entry.data();
+        const Material* run_material = nullptr;
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::uint32_t id = id_of(i);
+            const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
+            // Mispredicted once per triangle of the tile, not at every change of triangle.
+            const std::size_t slot = TriangleTable::slot(id);
+            if (tags[slot] != (key_base | id)) [[unlikely]]
+                set_up(slot, id, key_base);
+            const GatheredTriangle& t = entries[slot];
+            if (t.material != run_material) [[unlikely]]
+                run_material = start_run(t, i);
+            const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w, lambda1, lambda2);
+            // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+            const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
+            const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
+            world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
+            normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
+            if (t.beyond_plain) [[unlikely]] {
+                const auto [x, y] = xy_of(i);
+                add_extras_at(i, slot, x, y, lambda1, lambda2, b1, b2);
+            }
+        }
+        if (!runs_.empty()) {
+            runs_.back().end = std::uint32_t(count);
+            out_.set_material(material_filled_, count, *runs_.back().material);
+        }
+        out_.pad(count);
+        return count;
+    }
+
+private:
+    // Sets up triangle `id` in table slot `slot`, as SurfaceGather::add sets up
+    // its cached triangle, operation for operation.
+    [[gnu::noinline]] void set_up(std::size_t slot, std::uint32_t id, std::uint64_t key_base) {
+        table_.tag[slot] = key_base | id;
+        const TriangleCorners c = lookup_(id);
+        GatheredTriangle& t = table_.entry[slot];
+        t.material = c.material;
+        t.textured = c.material->has_maps();
+        t.beyond_plain = t.textured || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
+        for (int k = 0; k < 3; ++k) t.inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
+        const glm::vec3 world0 = c.corner[0]->world_pos, normal0 = c.corner[0]->normal;
+        t.world0 = float4_from(world0);
+        t.world_d1 = float4_from(c.corner[1]->world_pos - world0), t.world_d2 = float4_from(c.corner[2]->world_pos - world0);
+        t.normal0 = float4_from(normal0);
+        t.normal_d1 = float4_from(c.corner[1]->normal - normal0), t.normal_d2 = float4_from(c.corner[2]->normal - normal0);
+        if (t.beyond_plain) {
+            GatheredTriangleExtras& e = table_.extras[slot];
+            e.corners = c;
+            e.uv0 = c.corner[0]->uv;
+            e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
+        }
+    }
+
+    // A run of material t.material begins at fragment i; the last run's plain
+    // fragments get their material. Returns the new run's material.
+    [[gnu::noinline]] const Material* start_run(const GatheredTriangle& t, std::size_t i) {
+        if (!runs_.empty()) {
+            runs_.back().end = std::uint32_t(i);
+            out_.set_material(material_filled_, i, *runs_.back().material);
+        }
+        material_filled_ = i;
+        runs_.push_back({std::uint32_t(i), 0, t.material, t.textured});
+        return t.material;
+    }
+
+    // Fragment i is textured, vertex-coloured or blended: its material
+    // channels now (the colours multiply them), then the reference's extras.
+    [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t slot, int x, int y, float lambda1, float lambda2,
+                                         float b1, float b2) {
+        out_.set_material(material_filled_, i + 1, *runs_.back().material);
+        material_filled_ = i + 1;
+        const GatheredTriangle& t = table_.entry[slot];
+        const GatheredTriangleExtras& e = table_.extras[slot];
+        const glm::vec3 world_d1 = vec3_from(t.world_d1), world_d2 = vec3_from(t.world_d2);
+        const SurfaceInterpolants interpolants{t.inv_w, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
+        add_extras(e.corners, interpolants, x, y, lambda1, lambda2, b1, b2, out_, i);
+    }
+
+    Lookup& lookup_;
+    FragmentBuffer& out_;
+    std::vector<MaterialRun>& runs_;
+    TriangleTable& table_;
+    std::size_t material_filled_ = 0;  // fragments from here to the current one are plain, of the run's material, unfilled
+};
+
+}  // namespace detail
+
+// gather_surface_points (surface_gather.hpp) with `isa`'s gather: the
+// reference for Isa::scalar, the fast one above for the others; the same
+// fragments, runs and bits either way.
+template <class Lookup>
+std::size_t gather_surface_points(Isa isa, const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs) {
+    if (isa == Isa::scalar) return gather_surface_points(tile, width, height, lookup, out, runs);
+    // The covered pixels, in the reference's order, without a branch per pixel.
+    std::uint32_t* const pixels = out.triangle_table().pixels.data();
+    std::size_t count = 0;
+    for (int y = 0; y < height; ++y) {
+        const std::uint32_t row = std::uint32_t(y * tile.side);
+        for (int x = 0; x < width; ++x) {
+            pixels[count] = row + std::uint32_t(x);
+            count += tile.covered(row + x) ? 1 : 0;
+        }
+    }
+    const int side = tile.side;
+    detail::FastSurfaceGather<std::remove_reference_t<Lookup>> gather(lookup, out, runs);
+    return gather.gather(
+        count, [&](std::size_t i) { return tile.triangle[pixels[i]]; },
+        [&](std::size_t i) { return tile.lambda1[pixels[i]]; }, [&](std::size_t i) { return tile.lambda2[pixels[i]]; },
+        [&](std::size_t i) { return std::pair<int, int>(int(pixels[i]) % side, int(pixels[i]) / side); });
+}
+
+// The same for a fragment list (4× MSAA, blending).
+template <class Lookup>
+std::size_t gather_surface_points(Isa isa, const raster::TileFragments& fragments, Lookup&& lookup,
+                                  FragmentBuffer& out, std::vector<MaterialRun>& runs) {
+    if (isa == Isa::scalar) return gather_surface_points(fragments, lookup, out, runs);
+    detail::FastSurfaceGather<std::remove_reference_t<Lookup>> gather(lookup, out, runs);
+    return gather.gather(
+        fragments.count, [&](std::size_t i) { return fragments.triangle[i]; },
+        [&](std::size_t i) { return fragments.lambda1[i]; }, [&](std::size_t i) { return fragments.lambda2[i]; },
+        [&](std::size_t i) { return std::pair<int, int>(fragments.x[i], fragments.y[i]); });
+}
+
+}  // namespace tessera::shade
