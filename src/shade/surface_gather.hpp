@@ -219,8 +219,7 @@ public:
             textured_ = c_.material->has_maps();
             // Vertex colours and blended alpha ride on the textured branch: other
             // triangles keep exactly one test per fragment.
-            colored_or_blended_ = c_.color[0] != nullptr || c_.material->alpha_mode == AlphaMode::blend;
-            beyond_plain_ = textured_ || colored_or_blended_;
+            beyond_plain_ = textured_ || c_.color[0] != nullptr || c_.material->alpha_mode == AlphaMode::blend;
             // 1 / clip w, as the viewport transform computes it (geometry/viewport.hpp).
             for (int k = 0; k < 3; ++k) inv_w_[k] = 1.0f / c_.corner[k]->clip_pos.w;
             world0_ = c_.corner[0]->world_pos;
@@ -237,52 +236,10 @@ public:
         const auto [b1, b2] = raster::perspective_barycentrics(inv_w_, lambda1, lambda2);
         const glm::vec3 world = world0_ + b1 * world_d1_ + b2 * world_d2_;
         out_.set(count_, world, normal0_ + b1 * normal_d1_ + b2 * normal_d2_, *c_.material);
-        if (beyond_plain_) add_maps_colors_alpha(x, y, lambda1, lambda2, b1, b2);
+        if (beyond_plain_)
+            add_extras(c_, {inv_w_, world_d1_, world_d2_, uv0_, uv_d1_, uv_d2_}, x, y, lambda1, lambda2, b1, b2, out_,
+                       count_);
         ++count_;
-    }
-
-    // The textured materials' inputs, vertex colours, blended alpha.
-    void add_maps_colors_alpha(int x, int y, float lambda1, float lambda2, float b1, float b2) {
-        using C = FragmentBuffer;
-        if (colored_or_blended_) add_color_and_alpha(b1, b2);
-        if (textured_) {
-            const glm::vec2 uv = uv0_ + b1 * uv_d1_ + b2 * uv_d2_;
-            // The quad partners: the pixel beside this one in the quad's row and in its column.
-            const float step_x = (x & 1) ? -1.0f : 1.0f, step_y = (y & 1) ? -1.0f : 1.0f;
-            const auto [bx1, bx2] = raster::perspective_barycentrics(
-                inv_w_, lambda1 + step_x * c_.lambda1_dx, lambda2 + step_x * c_.lambda2_dx);
-            const auto [by1, by2] = raster::perspective_barycentrics(
-                inv_w_, lambda1 + step_y * c_.lambda1_dy, lambda2 + step_y * c_.lambda2_dy);
-            // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
-            const glm::vec2 duv_dx = step_x * ((bx1 - b1) * uv_d1_ + (bx2 - b2) * uv_d2_);
-            const glm::vec2 duv_dy = -step_y * ((by1 - b1) * uv_d1_ + (by2 - b2) * uv_d2_);
-            const glm::vec3 dp_dx = step_x * ((bx1 - b1) * world_d1_ + (bx2 - b2) * world_d2_);
-            const glm::vec3 dp_dy = -step_y * ((by1 - b1) * world_d1_ + (by2 - b2) * world_d2_);
-            const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
-                                    dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
-            for (int k = 0; k < 12; ++k) out_.channel(C::Channel(C::u + k))[count_] = values[k];
-            glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
-            if (c_.tangent[0] && c_.tangent[1] && c_.tangent[2]) {
-                const float b0 = 1.0f - b1 - b2;
-                tangent = glm::vec4(glm::vec3(*c_.tangent[0]) * b0 + glm::vec3(*c_.tangent[1]) * b1 +
-                                        glm::vec3(*c_.tangent[2]) * b2,
-                                    c_.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
-            }
-            for (int k = 0; k < 4; ++k) out_.channel(C::Channel(C::tangent_x + k))[count_] = tangent[k];
-        }
-    }
-
-    // Vertex colours multiply the gathered albedo; blended materials get their alpha.
-    void add_color_and_alpha(float b1, float b2) {
-        using C = FragmentBuffer;
-        float alpha = c_.material->alpha_factor;
-        if (c_.color[0]) {
-            const glm::vec4 color0 = *c_.color[0];
-            const glm::vec4 color = color0 + b1 * (*c_.color[1] - color0) + b2 * (*c_.color[2] - color0);
-            for (int k = 0; k < 3; ++k) out_.channel(C::Channel(C::albedo_r + k))[count_] *= color[k];
-            alpha *= color.a;
-        }
-        if (c_.material->alpha_mode == AlphaMode::blend) out_.channel(C::alpha)[count_] = alpha;
     }
 
     std::size_t finish() {
@@ -298,7 +255,7 @@ private:
     std::size_t count_ = 0;
     std::uint32_t cached_id_ = raster::kNoTriangle;
     TriangleCorners c_{};
-    bool textured_ = false, colored_or_blended_ = false, beyond_plain_ = false;
+    bool textured_ = false, beyond_plain_ = false;
     std::array<float, 3> inv_w_{};
     glm::vec3 world0_{}, world_d1_{}, world_d2_{}, normal0_{}, normal_d1_{}, normal_d2_{};
     glm::vec2 uv0_{}, uv_d1_{}, uv_d2_{};

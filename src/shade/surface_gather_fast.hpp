@@ -14,8 +14,7 @@
 //    per-fragment loop keeps its state in registers; its one unpredictable
 //    branch is the table's miss, once per triangle of the tile.
 // Textured, vertex-coloured and blended fragments get the reference's scalar
-// extras (detail::add_extras, a copy of SurfaceGather's, kept equal by
-// tests/shade/test_surface_gather.cpp).
+// extras (detail::add_extras, which the reference gather calls too).
 #pragma once
 
 #include <utility>
