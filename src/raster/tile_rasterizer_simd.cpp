@@ -8,6 +8,7 @@
 #include "simd/kernel_prelude.hpp"
 #include "simd/lane_helpers.hpp"
 
+#include "raster/bin_rasterizer.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
@@ -325,10 +326,10 @@ template <int kWidth>
 #endif
 }
 
-}  // namespace
-
-void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
-                                            TileBuffers& buffers, const TileView& view, RasterCounters& counters) {
+// rasterize_triangle_<isa>, inlined into the bin loop below too.
+[[gnu::always_inline]] inline void rasterize_one(const RasterTriangle& t, std::uint32_t triangle_id,
+                                                 const TileRect& tile, TileBuffers& buffers, const TileView& view,
+                                                 RasterCounters& counters) {
     const int x_begin = t.px_min > tile.x0 ? t.px_min : tile.x0, x_end = t.px_max < tile.x1 ? t.px_max + 1 : tile.x1;
     const int y_begin = t.py_min > tile.y0 ? t.py_min : tile.y0, y_end = t.py_max < tile.y1 ? t.py_max + 1 : tile.y1;
     if (x_begin >= x_end || y_begin >= y_end) return;
@@ -341,6 +342,28 @@ void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32
         return rasterize_tiny<16>(t, triangle_id, box, view, counters);
     }
     rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, triangle_id, tile, buffers, counters);
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                                            TileBuffers& buffers, const TileView& view, RasterCounters& counters) {
+    rasterize_one(t, triangle_id, tile, buffers, view, counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
+                                       std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers,
+                                       const TileView& view, RasterCounters& counters, DrawnCallback drawn) {
+    for (std::size_t i = 0; i < count; ++i) {
+        // A tile's triangles lie scattered through the chunk: fetch ahead
+        // (records are one aligned cache line each).
+        constexpr std::size_t kPrefetchDistance = 8;
+        if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
+        const RasterTriangle& t = records[bin[i]];
+        const std::uint64_t passed = counters.depth_passed;
+        rasterize_one(t, id_base | bin[i], tile, buffers, view, counters);
+        if (counters.depth_passed != passed && drawn.call) drawn.call(drawn.context, bin[i]);
+    }
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_stamp)(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters) {

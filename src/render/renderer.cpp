@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <optional>
+#include <span>
 #include <stdexcept>
+#include <type_traits>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -21,6 +24,7 @@
 #include "geometry/vertex_stage.hpp"
 #include "image/blend.hpp"
 #include "image/resolve.hpp"
+#include "raster/bin_rasterizer.hpp"
 #include "raster/blend_raster.hpp"
 #include "raster/msaa.hpp"
 #include "raster/raster_limits.hpp"
@@ -222,8 +226,11 @@ struct Renderer::Frame {
         s.spans.push_back(span);
     }
     void collect_profile(Clock::time_point t1, Clock::time_point t2, Clock::time_point t3);
-    template <class Reset, class Rasterize>
-    bool rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const;
+    template <class Reset, class Rasterize, class RasterizeBin = std::nullptr_t>
+    bool rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize,
+                        RasterizeBin&& rasterize_bin = nullptr) const;
+    void rasterize_bin(const render::Chunk& chunk, std::span<const std::uint32_t> bin, std::uint32_t id_base,
+                       const raster::TileRect& rect, WorkerScratch& s) const;
     template <class Gather, class Resolve>
     void shade_and_resolve(const Scene& scene, const image::ClearValues& clear, int tile, bool drawn,
                            Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve,
@@ -474,8 +481,11 @@ void Renderer::Frame::describe_for_textures(const raster::RasterTriangle& t, con
 // Rasterizes every chunk's triangles for this tile, in submission order:
 // reset() clears the tile's buffers before the first one, rasterize(t, id,
 // alpha_tested) draws one (alpha_tested: its material is masked). Returns whether any fragment passed the depth test.
-template <class Reset, class Rasterize>
-bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize) const {
+// Given rasterize_bin(chunk, bin, id_base), a chunk's bin that needs no alpha
+// test goes to it whole instead (id_base: the chunk's part of the ids).
+template <class Reset, class Rasterize, class RasterizeBin>
+bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, Rasterize&& rasterize,
+                                     RasterizeBin&& rasterize_bin) const {
     const std::uint64_t passed_before = s.counters.depth_passed;
     s.tile_triangles = 0;
     bool is_reset = false;
@@ -484,6 +494,13 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
         const std::span<const std::uint32_t> bin = chunk.bins.tile(tile);
         s.tile_triangles += bin.size();
         if (chunk.blended) continue;  // the blend pass draws them
+        if constexpr (!std::is_same_v<std::decay_t<RasterizeBin>, std::nullptr_t>) {
+            if (!chunk.alpha_tested && !bin.empty()) {
+                if (!is_reset) reset(), is_reset = true;
+                rasterize_bin(chunk, bin, std::uint32_t(c) << render::kChunkIdShift);
+                continue;
+            }
+        }
         for (std::size_t i = 0; i < bin.size(); ++i) {
             if (!is_reset) reset(), is_reset = true;
             // A tile's triangles lie scattered through the chunk: fetch ahead.
@@ -502,6 +519,29 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
     return s.counters.depth_passed != passed_before;
 }
 
+// One chunk's bin for a one-sample tile (raster/bin_rasterizer.hpp). Out of
+// line, so that render_tile stays small enough for g++ to inline the gather of
+// visible pixels (a bigger body inlined here once made it stop, and the
+// gather ran slower).
+[[gnu::noinline]] void Renderer::Frame::rasterize_bin(const render::Chunk& chunk, std::span<const std::uint32_t> bin,
+                                                      std::uint32_t id_base, const raster::TileRect& rect,
+                                                      WorkerScratch& s) const {
+    struct Context {
+        const Frame* frame;
+        const render::Chunk* chunk;
+    } context{this, &chunk};
+    // prefetch_corners, in inline assembly: in a function that does nothing
+    // else, g++ 12 dropped __builtin_prefetch (this callback compiled to a bare ret).
+    const auto prefetch = [](void* c, std::uint32_t entry) {
+        const Context& context = *static_cast<const Context*>(c);
+        const raster::RasterTriangle& t = context.chunk->assembled.triangles[entry];
+        for (int k = 0; k < 3; ++k)
+            asm volatile("prefetcht0 %0" : : "m"(context.chunk->vertex(t.vertex[k], context.frame->vertices)));
+    };
+    raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, id_base, rect, s.raster, s.counters,
+                          raster::DrawnCallback{prefetch, &context});
+}
+
 void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
     const auto t0 = Clock::now();
@@ -512,7 +552,9 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                                           const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
                                           raster::rasterize_triangle(t, id, rect, s.raster, s.counters,
                                                                      {shade::alpha_mask_keep, &mask});
-                                      });
+                                      },
+                                      [&](const render::Chunk& chunk, std::span<const std::uint32_t> bin,
+                                          std::uint32_t id_base) { rasterize_bin(chunk, bin, id_base, rect, s); });
     const bool blended = has_blended(tile, scene.msaa, s);
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 
+#include "raster/bin_rasterizer.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster_test_util.hpp"
 
@@ -12,7 +13,7 @@ using namespace tessera;
 namespace {
 
 // Rasterizes the triangles into `tile` with the scalar int64 loop and with
-// every ISA's vector path, and checks that the buffers (coverage by the fill
+// every ISA's vector path (a call per triangle, and all as one bin), and checks that the buffers (coverage by the fill
 // rule, depth, triangle ids, barycentrics) and the counters are bit-identical.
 // Returns the scalar loop's buffers.
 raster::TileBuffers check_isas_match_scalar(const std::vector<raster::RasterTriangle>& triangles,
@@ -30,24 +31,34 @@ raster::TileBuffers check_isas_match_scalar(const std::vector<raster::RasterTria
             MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
             continue;
         }
-        raster::TileBuffers buffers;
-        buffers.reset(side);
-        raster::RasterCounters counts;
-        for (std::uint32_t i = 0; i < triangles.size(); ++i)
-            raster::rasterize_triangle(isa, triangles[i], i, tile, buffers, counts);
-        CHECK(counts.fragments == reference_counts.fragments);
-        CHECK(counts.depth_passed == reference_counts.depth_passed);
-        int mismatches = 0;
-        for (std::size_t p = 0; p < std::size_t(side) * side; ++p) {
-            const bool covered = reference.covered(p);
-            if (covered != buffers.covered(p) ||
-                std::memcmp(&reference.depth[p], &buffers.depth[p], sizeof(float)) != 0 ||
-                (covered && (reference.triangle[p] != buffers.triangle[p] ||
-                             std::memcmp(&reference.lambda1[p], &buffers.lambda1[p], sizeof(float)) != 0 ||
-                             std::memcmp(&reference.lambda2[p], &buffers.lambda2[p], sizeof(float)) != 0)))
-                ++mismatches;
+        // One call per triangle, and the whole list as one bin (rasterize_bin, as the renderer draws).
+        for (const bool whole_bin : {false, true}) {
+            CAPTURE(whole_bin);
+            raster::TileBuffers buffers;
+            buffers.reset(side);
+            raster::RasterCounters counts;
+            if (whole_bin) {
+                std::vector<std::uint32_t> bin(triangles.size());
+                for (std::uint32_t i = 0; i < bin.size(); ++i) bin[i] = i;
+                raster::rasterize_bin(isa, triangles.data(), bin, 0, tile, buffers, counts);
+            } else {
+                for (std::uint32_t i = 0; i < triangles.size(); ++i)
+                    raster::rasterize_triangle(isa, triangles[i], i, tile, buffers, counts);
+            }
+            CHECK(counts.fragments == reference_counts.fragments);
+            CHECK(counts.depth_passed == reference_counts.depth_passed);
+            int mismatches = 0;
+            for (std::size_t p = 0; p < std::size_t(side) * side; ++p) {
+                const bool covered = reference.covered(p);
+                if (covered != buffers.covered(p) ||
+                    std::memcmp(&reference.depth[p], &buffers.depth[p], sizeof(float)) != 0 ||
+                    (covered && (reference.triangle[p] != buffers.triangle[p] ||
+                                 std::memcmp(&reference.lambda1[p], &buffers.lambda1[p], sizeof(float)) != 0 ||
+                                 std::memcmp(&reference.lambda2[p], &buffers.lambda2[p], sizeof(float)) != 0)))
+                    ++mismatches;
+            }
+            CHECK(mismatches == 0);
         }
-        CHECK(mismatches == 0);
     }
     return reference;
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_common.hpp"
+#include "raster/bin_rasterizer.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"
 
@@ -140,6 +142,31 @@ void bench_rasterize(benchmark::State& state, const SizeClass& size, std::option
     state.counters["depth_pass"] = double(counters.depth_passed) / double(std::max<std::uint64_t>(counters.fragments, 1));
 }
 
+// The same batches through raster::rasterize_bin, as the renderer draws a
+// chunk's bin: one call for all (raster/bin_rasterizer.hpp).
+void bench_rasterize_bin(benchmark::State& state, const SizeClass& size, Isa isa) {
+    if (skip_if_unsupported(state, isa)) return;
+    const std::vector<RasterTriangle> triangles = tile_triangles(size);
+    std::vector<std::uint32_t> bin(triangles.size());
+    for (std::size_t i = 0; i < bin.size(); ++i) bin[i] = std::uint32_t(i);
+    raster::TileBuffers buffers;
+    buffers.reset(kTileSide);
+    raster::RasterCounters counters;
+    std::size_t first = 0;
+    for (auto _ : state) {
+        buffers.reset(kTileSide);
+        raster::rasterize_bin(isa, triangles.data(), std::span(bin).subspan(first, size.batch), 0, kTile, buffers,
+                              counters);
+        first = (first + size.batch) % triangles.size();
+        benchmark::DoNotOptimize(buffers.depth.data());
+        benchmark::ClobberMemory();
+    }
+    const auto rasterized = double(state.iterations()) * double(size.batch);
+    state.SetItemsProcessed(std::int64_t(rasterized));
+    state.counters["fragments"] = benchmark::Counter(double(counters.fragments), benchmark::Counter::kIsRate);
+    state.counters["frags_per_tri"] = double(counters.fragments) / rasterized;
+}
+
 void bench_tile_reset(benchmark::State& state) {
     raster::TileBuffers buffers;
     buffers.reset(kTileSide);
@@ -183,6 +210,12 @@ void bench_setup(benchmark::State& state, const SizeClass& size) {
                 std::optional<Isa>(isa));
         }
     }
+    for (const SizeClass* size : {&kSmall, &kMedium})
+        for (const Isa isa : kIsas) {
+            if (isa == Isa::scalar) continue;
+            benchmark::RegisterBenchmark(("raster_bin/" + std::string(simd::isa_name(isa)) + "/" + size->name).c_str(),
+                                         bench_rasterize_bin, *size, isa);
+        }
     benchmark::RegisterBenchmark("raster/tile_reset", bench_tile_reset);
     for (const SizeClass* size : {&kSmall, &kMedium, &kLarge})
         benchmark::RegisterBenchmark(("setup/" + std::string(size->name)).c_str(), bench_setup, *size);
