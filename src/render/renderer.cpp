@@ -244,12 +244,14 @@ struct Renderer::Frame {
     // A triangle that has just won a depth test will likely be gathered: its
     // corners are fetched now, while the rest of the tile rasterizes, instead
     // of stalling the gather (they lie scattered through the frame's vertices).
+    // In inline assembly: in a function that does nothing else (rasterize_bin's
+    // callback), g++ 12 dropped __builtin_prefetch and compiled it to a bare ret.
     void prefetch_corners(const render::Chunk& chunk, const raster::RasterTriangle& t) const {
         for (int k = 0; k < 3; ++k) {
             // A 48-byte vertex straddles two cache lines at half the 16-byte offsets: fetch both.
             const char* v = reinterpret_cast<const char*>(&chunk.vertex(t.vertex[k], vertices));
-            __builtin_prefetch(v);
-            __builtin_prefetch(v + sizeof(geometry::ShadedVertex) - 1);
+            asm volatile("prefetcht0 %0" : : "m"(*v));
+            asm volatile("prefetcht0 %0" : : "m"(v[sizeof(geometry::ShadedVertex) - 1]));
         }
     }
 };
@@ -530,13 +532,9 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
         const Frame* frame;
         const render::Chunk* chunk;
     } context{this, &chunk};
-    // prefetch_corners, in inline assembly: in a function that does nothing
-    // else, g++ 12 dropped __builtin_prefetch (this callback compiled to a bare ret).
     const auto prefetch = [](void* c, std::uint32_t entry) {
         const Context& context = *static_cast<const Context*>(c);
-        const raster::RasterTriangle& t = context.chunk->assembled.triangles[entry];
-        for (int k = 0; k < 3; ++k)
-            asm volatile("prefetcht0 %0" : : "m"(context.chunk->vertex(t.vertex[k], context.frame->vertices)));
+        context.frame->prefetch_corners(*context.chunk, context.chunk->assembled.triangles[entry]);
     };
     raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, id_base, rect, s.raster, s.counters,
                           raster::DrawnCallback{prefetch, &context});
