@@ -44,7 +44,11 @@ inline Float4 float4_from(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0
 inline glm::vec3 vec3_from(const Float4& v) { return {v[0], v[1], v[2]}; }
 struct alignas(64) GatheredTriangle {
     Float4 world0, world_d1, world_d2, normal0, normal_d1, normal_d2;
-    std::array<float, 3> inv_w;
+    // 1/w of the corners, and a spare float: the set-up stores the four lanes of a vector.
+    struct alignas(16) InvW {
+        std::array<float, 3> lanes;
+        float spare;
+    } inv_w;
     const Material* material;
     bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
 };

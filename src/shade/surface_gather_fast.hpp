@@ -17,13 +17,50 @@
 // extras (detail::add_extras, which the reference gather calls too).
 #pragma once
 
+#include <cstddef>
+#include <cstring>
 #include <utility>
 
 #include "shade/surface_gather.hpp"
 
 namespace tessera::shade {
 
+// What the fast gather's set-up needs of a triangle before it knows whether
+// the triangle is plain: its corners and material, and whether it is beyond
+// plain (textured, vertex-coloured or blended), which a renderer knows per
+// chunk of one object rather than per triangle.
+struct PlainCorners {
+    const geometry::ShadedVertex* corner[3];
+    const Material* material;
+    bool beyond_plain;
+};
+
+// A lookup in two forms: plain(id) gives PlainCorners, full(id) the whole
+// TriangleCorners (asked by the fast gather only where beyond_plain). Called
+// as a function it is full(id), the lookup the reference gather takes.
+template <class Plain, class Full>
+struct SplitCornerLookup {
+    Plain plain;
+    Full full;
+    TriangleCorners operator()(std::uint32_t id) const { return full(id); }
+};
+template <class Plain, class Full>
+SplitCornerLookup(Plain, Full) -> SplitCornerLookup<Plain, Full>;
+
 namespace detail {
+
+// A vertex's WorldPos or Normal (at byte Offset) as (x, y, z, 0): one 16-byte
+// load (the vec3 and the vertex's next float), the fourth lane cleared.
+template <std::size_t Offset>
+inline Float4 load_vec3(const geometry::ShadedVertex& v) {
+    using Int4 = std::int32_t __attribute__((vector_size(16)));
+    static_assert(Offset + sizeof(Float4) <= sizeof(geometry::ShadedVertex));
+    Float4 x;
+    std::memcpy(&x, reinterpret_cast<const char*>(&v) + Offset, sizeof x);
+    return Float4(Int4(x) & Int4{-1, -1, -1, 0});
+}
+inline constexpr std::size_t kWorldPosOffset = offsetof(geometry::ShadedVertex, world_pos);
+inline constexpr std::size_t kNormalOffset = offsetof(geometry::ShadedVertex, normal);
 
 // The fast gather's state between fragments; the loop over fragments
 // (gather_fragments) keeps its own in locals, and calls out of line only at a
@@ -62,7 +99,7 @@ public:
             const GatheredTriangle& t = entries[slot];
             if (t.material != run_material) [[unlikely]]
                 run_material = start_run(t, i);
-            const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w, lambda1, lambda2);
+            const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
             // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
             const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
             const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
@@ -83,26 +120,58 @@ public:
 
 private:
     // Sets up triangle `id` in table slot `slot`, as SurfaceGather::add sets up
-    // its cached triangle, operation for operation.
+    // its cached triangle, operation for operation. A SplitCornerLookup's plain
+    // form serves plain triangles; the full TriangleCorners only the others.
     [[gnu::noinline]] void set_up(std::size_t slot, std::uint32_t id, std::uint64_t key_base) {
         table_.tag[slot] = key_base | id;
-        const TriangleCorners c = lookup_(id);
         GatheredTriangle& t = table_.entry[slot];
-        t.material = c.material;
-        t.textured = c.material->has_maps();
-        t.beyond_plain = t.textured || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
-        for (int k = 0; k < 3; ++k) t.inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
-        const glm::vec3 world0 = c.corner[0]->world_pos, normal0 = c.corner[0]->normal;
-        t.world0 = float4_from(world0);
-        t.world_d1 = float4_from(c.corner[1]->world_pos - world0), t.world_d2 = float4_from(c.corner[2]->world_pos - world0);
-        t.normal0 = float4_from(normal0);
-        t.normal_d1 = float4_from(c.corner[1]->normal - normal0), t.normal_d2 = float4_from(c.corner[2]->normal - normal0);
-        if (t.beyond_plain) {
-            GatheredTriangleExtras& e = table_.extras[slot];
-            e.corners = c;
-            e.uv0 = c.corner[0]->uv;
-            e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
+        if constexpr (requires { lookup_.plain(id); }) {
+            const PlainCorners p = lookup_.plain(id);
+            set_up_geometry(t, p.corner, p.material);
+            t.beyond_plain = p.beyond_plain;
+            t.textured = false;
+            if (p.beyond_plain) [[unlikely]]
+                set_up_extras_of(slot, t, id);
+        } else {
+            const TriangleCorners c = lookup_(id);
+            set_up_geometry(t, c.corner, c.material);
+            t.beyond_plain = c.material->has_maps() || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
+            t.textured = false;
+            if (t.beyond_plain) set_up_extras(slot, t, c);
         }
+    }
+
+    // 1/w and the corner differences: lane-wise IEEE operations, the same
+    // bits per component as the reference's scalar ones.
+    static void set_up_geometry(GatheredTriangle& t, const geometry::ShadedVertex* const (&corner)[3],
+                                const Material* material) {
+        t.material = material;
+        const Float4 w = {corner[0]->clip_pos.w, corner[1]->clip_pos.w, corner[2]->clip_pos.w, 1.0f};
+        const Float4 inv_w = Float4{1.0f, 1.0f, 1.0f, 1.0f} / w;
+        static_assert(sizeof t.inv_w == sizeof inv_w);
+        std::memcpy(&t.inv_w, &inv_w, sizeof inv_w);
+        const Float4 world0 = load_vec3<kWorldPosOffset>(*corner[0]);
+        const Float4 normal0 = load_vec3<kNormalOffset>(*corner[0]);
+        t.world0 = world0;
+        t.world_d1 = load_vec3<kWorldPosOffset>(*corner[1]) - world0;
+        t.world_d2 = load_vec3<kWorldPosOffset>(*corner[2]) - world0;
+        t.normal0 = normal0;
+        t.normal_d1 = load_vec3<kNormalOffset>(*corner[1]) - normal0;
+        t.normal_d2 = load_vec3<kNormalOffset>(*corner[2]) - normal0;
+    }
+
+    // Out of line, so that the plain set-up keeps no TriangleCorners on its stack.
+    [[gnu::noinline]] void set_up_extras_of(std::size_t slot, GatheredTriangle& t, std::uint32_t id) {
+        set_up_extras(slot, t, lookup_.full(id));
+    }
+
+    // A beyond-plain triangle: its whole corners and texture coordinates for the extras.
+    [[gnu::noinline]] void set_up_extras(std::size_t slot, GatheredTriangle& t, const TriangleCorners& c) {
+        t.textured = c.material->has_maps();
+        GatheredTriangleExtras& e = table_.extras[slot];
+        e.corners = c;
+        e.uv0 = c.corner[0]->uv;
+        e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
     }
 
     // A run of material t.material begins at fragment i; the last run's plain
@@ -126,7 +195,7 @@ private:
         const GatheredTriangle& t = table_.entry[slot];
         const GatheredTriangleExtras& e = table_.extras[slot];
         const glm::vec3 world_d1 = vec3_from(t.world_d1), world_d2 = vec3_from(t.world_d2);
-        const SurfaceInterpolants interpolants{t.inv_w, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
+        const SurfaceInterpolants interpolants{t.inv_w.lanes, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
         add_extras(e.corners, interpolants, x, y, lambda1, lambda2, b1, b2, out_, i);
     }
 
