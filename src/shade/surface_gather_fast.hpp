@@ -13,9 +13,11 @@
 //  - the covered pixels are listed without a branch per pixel;
 //  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
 //    same IEEE operations per component as the reference's glm;
+//  - the table is probed for a batch of fragments without a branch, then the
+//    batch's new triangles are set up, then its fragments gathered: the
+//    probe's miss (once per triangle of the tile) is no mispredicted branch;
 //  - the set-up, the run changes and the extras stay out of line, so the
-//    per-fragment loop keeps its state in registers; its one unpredictable
-//    branch is the table's miss, once per triangle of the tile.
+//    per-fragment loop keeps its state in registers.
 // Textured, vertex-coloured and blended fragments get the reference's scalar
 // extras (detail::add_extras, which the reference gather calls too).
 #pragma once
@@ -64,6 +66,7 @@ inline Float4 load_vec3(const geometry::ShadedVertex& v) {
 }
 inline constexpr std::size_t kWorldPosOffset = offsetof(geometry::ShadedVertex, world_pos);
 inline constexpr std::size_t kNormalOffset = offsetof(geometry::ShadedVertex, normal);
+inline constexpr std::size_t kBatch = 64;  // fragments per batch of the fast gather
 
 // The fast gather's state between fragments; the loop over fragments
 // (gather_fragments) keeps its own in locals, and calls out of line only at a
@@ -89,28 +92,50 @@ public:
         float* const normal_y = out_.channel(C::normal_y);
         float* const normal_z = out_.channel(C::normal_z);
         const std::uint64_t key_base = std::uint64_t(table_.epoch) << 32;
-        const std::uint64_t* const tags = table_.tag.data();
+        std::uint64_t* const tags = table_.tag.data();
+        std::uint32_t* const entry_of_slot = table_.entry_of_slot.data();
+        std::uint32_t* const entry_of_fragment = table_.entry_of_fragment.data();
+        std::uint32_t* const new_ids = table_.new_id.data();
         const GatheredTriangle* const entries = table_.entry.data();
         const Material* run_material = nullptr;
-        for (std::size_t i = 0; i < count; ++i) {
-            const std::uint32_t id = id_of(i);
-            const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
-            // Mispredicted once per triangle of the tile, not at every change of triangle.
-            const std::size_t slot = TriangleTable::slot(id);
-            if (tags[slot] != (key_base | id)) [[unlikely]]
-                set_up(slot, id, key_base);
-            const GatheredTriangle& t = entries[slot];
-            if (t.material != run_material) [[unlikely]]
-                run_material = start_run(t, i);
-            const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
-            // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
-            const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
-            const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
-            world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
-            normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
-            if (t.beyond_plain) [[unlikely]] {
-                const auto [x, y] = xy_of(i);
-                add_extras_at(i, slot, x, y, lambda1, lambda2, b1, b2);
+        std::size_t entry_count = 0;
+        // In batches, each in three loops, so that no branch depends on whether
+        // a fragment's triangle is new (at 720p that was one miss per ~2 fragments):
+        // which fragments meet a new triangle, without a branch; the new
+        // triangles' set-ups; the fragments. An entry is indexed by set-up, not
+        // by slot, so a later triangle in the same slot does not overwrite it.
+        for (std::size_t begin = 0; begin < count; begin += kBatch) {
+            const std::size_t end = std::min(count, begin + kBatch), first_new = entry_count;
+            for (std::size_t i = begin; i < end; ++i) {
+                const std::uint32_t id = id_of(i);
+                const std::size_t slot = TriangleTable::slot(id);
+                const bool is_new = tags[slot] != (key_base | id);
+                tags[slot] = key_base | id;
+                new_ids[entry_count] = id;  // kept where is_new
+                // A mask, not ?:, which g++ compiles to a branch here.
+                const std::uint32_t new_mask = 0u - std::uint32_t(is_new);
+                const std::uint32_t entry = (std::uint32_t(entry_count) & new_mask) | (entry_of_slot[slot] & ~new_mask);
+                entry_of_slot[slot] = entry;
+                entry_of_fragment[i] = entry;
+                entry_count += std::size_t(is_new);
+            }
+            for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
+            for (std::size_t i = begin; i < end; ++i) {
+                const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
+                const std::size_t entry = entry_of_fragment[i];
+                const GatheredTriangle& t = entries[entry];
+                if (t.material != run_material) [[unlikely]]
+                    run_material = start_run(t, i);
+                const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
+                // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+                const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
+                const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
+                world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
+                normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
+                if (t.beyond_plain) [[unlikely]] {
+                    const auto [x, y] = xy_of(i);
+                    add_extras_at(i, entry, x, y, lambda1, lambda2, b1, b2);
+                }
             }
         }
         if (!runs_.empty()) {
@@ -122,25 +147,24 @@ public:
     }
 
 private:
-    // Sets up triangle `id` in table slot `slot`, as SurfaceGather::add sets up
+    // Sets up triangle `id` in table entry `entry`, as SurfaceGather::add sets up
     // its cached triangle, operation for operation. A SplitCornerLookup's plain
     // form serves plain triangles; the full TriangleCorners only the others.
-    [[gnu::noinline]] void set_up(std::size_t slot, std::uint32_t id, std::uint64_t key_base) {
-        table_.tag[slot] = key_base | id;
-        GatheredTriangle& t = table_.entry[slot];
+    [[gnu::noinline]] void set_up(std::size_t entry, std::uint32_t id) {
+        GatheredTriangle& t = table_.entry[entry];
         if constexpr (requires { lookup_.plain(id); }) {
             const PlainCorners p = lookup_.plain(id);
             set_up_geometry(t, p.corner, p.material);
             t.beyond_plain = p.beyond_plain;
             t.textured = false;
             if (p.beyond_plain) [[unlikely]]
-                set_up_extras_of(slot, t, id);
+                set_up_extras_of(entry, t, id);
         } else {
             const TriangleCorners c = lookup_(id);
             set_up_geometry(t, c.corner, c.material);
             t.beyond_plain = c.material->has_maps() || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
             t.textured = false;
-            if (t.beyond_plain) set_up_extras(slot, t, c);
+            if (t.beyond_plain) set_up_extras(entry, t, c);
         }
     }
 
@@ -164,14 +188,14 @@ private:
     }
 
     // Out of line, so that the plain set-up keeps no TriangleCorners on its stack.
-    [[gnu::noinline]] void set_up_extras_of(std::size_t slot, GatheredTriangle& t, std::uint32_t id) {
-        set_up_extras(slot, t, lookup_.full(id));
+    [[gnu::noinline]] void set_up_extras_of(std::size_t entry, GatheredTriangle& t, std::uint32_t id) {
+        set_up_extras(entry, t, lookup_.full(id));
     }
 
     // A beyond-plain triangle: its whole corners and texture coordinates for the extras.
-    [[gnu::noinline]] void set_up_extras(std::size_t slot, GatheredTriangle& t, const TriangleCorners& c) {
+    [[gnu::noinline]] void set_up_extras(std::size_t entry, GatheredTriangle& t, const TriangleCorners& c) {
         t.textured = c.material->has_maps();
-        GatheredTriangleExtras& e = table_.extras[slot];
+        GatheredTriangleExtras& e = table_.extras[entry];
         e.corners = c;
         e.uv0 = c.corner[0]->uv;
         e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
@@ -191,12 +215,12 @@ private:
 
     // Fragment i is textured, vertex-coloured or blended: its material
     // channels now (the colours multiply them), then the reference's extras.
-    [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t slot, int x, int y, float lambda1, float lambda2,
+    [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t entry, int x, int y, float lambda1, float lambda2,
                                          float b1, float b2) {
         out_.set_material(material_filled_, i + 1, *runs_.back().material);
         material_filled_ = i + 1;
-        const GatheredTriangle& t = table_.entry[slot];
-        const GatheredTriangleExtras& e = table_.extras[slot];
+        const GatheredTriangle& t = table_.entry[entry];
+        const GatheredTriangleExtras& e = table_.extras[entry];
         const glm::vec3 world_d1 = vec3_from(t.world_d1), world_d2 = vec3_from(t.world_d2);
         const SurfaceInterpolants interpolants{t.inv_w.lanes, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
         add_extras(e.corners, interpolants, x, y, lambda1, lambda2, b1, b2, out_, i);
