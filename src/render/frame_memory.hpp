@@ -9,6 +9,7 @@
 #include "raster/binning.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_assembly.hpp"
+#include "tessera/scene.hpp"
 
 namespace tessera::render {
 
@@ -32,6 +33,10 @@ struct alignas(128) Chunk {
     bool alpha_tested = false;  // the object's material is masked: fragments take the alpha test
     bool blended = false;       // the object's material blends: drawn in the blend pass, after the opaque ones
     const glm::vec4* colors = nullptr;  // the mesh's vertex colours (Mesh::colors), or null
+    const Material* material = nullptr;  // the object's
+    // The material has maps or blends, or the mesh has vertex colours: the
+    // gather needs the whole shade::TriangleCorners, not just the corners.
+    bool beyond_plain = false;
     raster::AssembledTriangles assembled;
     raster::ChunkBins bins;
 

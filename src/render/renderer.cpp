@@ -237,6 +237,20 @@ struct Renderer::Frame {
                            bool blended);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
+    // What the fast gather's set-up needs first (corners_of only where beyond plain).
+    shade::PlainCorners plain_corners_of(std::uint32_t id) const {
+        const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
+        const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
+        return {{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
+                 &chunk.vertex(t.vertex[2], vertices)},
+                chunk.material,
+                chunk.beyond_plain};
+    }
+    // The gathers' lookup: the fast gather's two forms, the reference's corners_of.
+    auto corner_lookup(const Scene& scene) const {
+        return shade::SplitCornerLookup{[this](std::uint32_t id) { return plain_corners_of(id); },
+                                        [this, &scene](std::uint32_t id) { return corners_of(scene, id); }};
+    }
     const raster::RasterTriangle& triangle_of(std::uint32_t id) const {
         return chunks[id >> render::kChunkIdShift].assembled.triangles[id & render::kChunkIndexMask];
     }
@@ -378,6 +392,8 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
             chunk.blended = scene.materials[scene.objects[o].material].alpha_mode == AlphaMode::blend;
             const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
             chunk.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
+            chunk.material = &scene.materials[scene.objects[o].material];
+            chunk.beyond_plain = chunk.material->has_maps() || chunk.colors != nullptr || chunk.blended;
         }
     }
     object_first_chunk.back() = std::uint32_t(chunk_count);
@@ -558,7 +574,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
         scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
-                isa, s.raster, rect.width(), rect.height(), [&](std::uint32_t id) { return corners_of(scene, id); },
+                isa, s.raster, rect.width(), rect.height(), corner_lookup(scene),
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -590,7 +606,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 return triangle_of(id);
             }, s.sample_fragments);
             return shade::gather_surface_points(
-                isa, s.sample_fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments,
+                isa, s.sample_fragments, corner_lookup(scene), s.fragments,
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -675,7 +691,7 @@ void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& c
     raster::BlendFragments& fragments = s.blend_fragments;
     const auto shade_and_blend = [&] {
         const std::size_t count = shade::gather_surface_points(
-            isa, fragments.fragments, [&](std::uint32_t id) { return corners_of(scene, id); }, s.fragments, s.material_runs);
+            isa, fragments.fragments, corner_lookup(scene), s.fragments, s.material_runs);
         shade_tile(scene, count, s);
         image::blend_over(fragments, count, s.fragments.outputs(), s.fragments.channel(shade::FragmentBuffer::alpha),
                           s.blend_radiance);

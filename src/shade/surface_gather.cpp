@@ -4,7 +4,7 @@ namespace tessera::shade {
 
 void FragmentBuffer::reserve(std::size_t max_fragments) {
     capacity_ = max_fragments;
-    triangles_.pixels.resize(max_fragments);
+    triangles_.reserve(max_fragments);
     // A kernel over a run starting anywhere may read whole vectors past the
     // run's end: one vector of slack past the padded size.
     for (auto& c : channels_) c.resize(padded_count(max_fragments) + kLanePadding);

@@ -44,7 +44,11 @@ inline Float4 float4_from(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0
 inline glm::vec3 vec3_from(const Float4& v) { return {v[0], v[1], v[2]}; }
 struct alignas(64) GatheredTriangle {
     Float4 world0, world_d1, world_d2, normal0, normal_d1, normal_d2;
-    std::array<float, 3> inv_w;
+    // 1/w of the corners, and a spare float: the set-up stores the four lanes of a vector.
+    struct alignas(16) InvW {
+        std::array<float, 3> lanes;
+        float spare;
+    } inv_w;
     const Material* material;
     bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
 };
@@ -54,15 +58,23 @@ struct GatheredTriangleExtras {
 };
 struct TriangleTable {
     static constexpr std::size_t kSize = 512;
-    std::vector<std::uint64_t> tag;  // epoch << 32 | triangle id
+    std::vector<std::uint64_t> tag;  // per slot: epoch << 32 | triangle id
+    std::vector<std::uint32_t> entry_of_slot;  // per slot: the entry of its triangle
+    // Per set-up of a gather (at most one per fragment):
     std::vector<GatheredTriangle> entry;
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
+    std::vector<std::uint32_t> new_id;  // the triangle
+    std::vector<std::uint32_t> entry_of_fragment;
     std::uint32_t epoch = 0;
     std::vector<std::uint32_t> pixels;  // the covered pixels of a one-sample tile
 
+    void reserve(std::size_t max_fragments) {
+        entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
+        entry_of_fragment.resize(max_fragments), pixels.resize(max_fragments);
+    }
     // Forgets every entry (valid ones have this epoch).
     void start_tile() {
-        if (tag.empty()) tag.assign(kSize, 0), entry.resize(kSize), extras.resize(kSize);
+        if (tag.empty()) tag.assign(kSize, 0), entry_of_slot.assign(kSize, 0);
         if (++epoch == 0) std::fill(tag.begin(), tag.end(), 0), epoch = 1;
     }
     static std::size_t slot(std::uint32_t id) { return (id ^ (id >> 11) ^ (id >> 17)) & (kSize - 1); }

@@ -5,25 +5,68 @@
 //    out) once per tile, in a per-tile table (TriangleTable), where the
 //    reference does it at every change of triangle along a row — on the
 //    spheres at 4K ~3.7 times per visible triangle;
+//  - given a SplitCornerLookup, a plain triangle's set-up looks up only its
+//    corners and material (the full TriangleCorners only beyond plain): at
+//    720p, with ~1.3 px triangles, there is a set-up per ~2 fragments;
 //  - plain fragments (untextured, no vertex colours, not blended) get their
 //    material's six channels filled per run of one material, not per fragment;
 //  - the covered pixels are listed without a branch per pixel;
 //  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
 //    same IEEE operations per component as the reference's glm;
+//  - the table is probed for a batch of fragments without a branch, then the
+//    batch's new triangles are set up, then its fragments gathered: the
+//    probe's miss (once per triangle of the tile) is no mispredicted branch;
 //  - the set-up, the run changes and the extras stay out of line, so the
-//    per-fragment loop keeps its state in registers; its one unpredictable
-//    branch is the table's miss, once per triangle of the tile.
+//    per-fragment loop keeps its state in registers.
 // Textured, vertex-coloured and blended fragments get the reference's scalar
 // extras (detail::add_extras, which the reference gather calls too).
 #pragma once
 
+#include <cstddef>
+#include <cstring>
 #include <utility>
 
 #include "shade/surface_gather.hpp"
 
 namespace tessera::shade {
 
+// What the fast gather's set-up needs of a triangle before it knows whether
+// the triangle is plain: its corners and material, and whether it is beyond
+// plain (textured, vertex-coloured or blended), which a renderer knows per
+// chunk of one object rather than per triangle.
+struct PlainCorners {
+    const geometry::ShadedVertex* corner[3];
+    const Material* material;
+    bool beyond_plain;
+};
+
+// A lookup in two forms: plain(id) gives PlainCorners, full(id) the whole
+// TriangleCorners (asked by the fast gather only where beyond_plain). Called
+// as a function it is full(id), the lookup the reference gather takes.
+template <class Plain, class Full>
+struct SplitCornerLookup {
+    Plain plain;
+    Full full;
+    TriangleCorners operator()(std::uint32_t id) const { return full(id); }
+};
+template <class Plain, class Full>
+SplitCornerLookup(Plain, Full) -> SplitCornerLookup<Plain, Full>;
+
 namespace detail {
+
+// A vertex's WorldPos or Normal (at byte Offset) as (x, y, z, 0): one 16-byte
+// load (the vec3 and the vertex's next float), the fourth lane cleared.
+template <std::size_t Offset>
+inline Float4 load_vec3(const geometry::ShadedVertex& v) {
+    using Int4 = std::int32_t __attribute__((vector_size(16)));
+    static_assert(Offset + sizeof(Float4) <= sizeof(geometry::ShadedVertex));
+    Float4 x;
+    std::memcpy(&x, reinterpret_cast<const char*>(&v) + Offset, sizeof x);
+    return Float4(Int4(x) & Int4{-1, -1, -1, 0});
+}
+inline constexpr std::size_t kWorldPosOffset = offsetof(geometry::ShadedVertex, world_pos);
+inline constexpr std::size_t kNormalOffset = offsetof(geometry::ShadedVertex, normal);
+inline constexpr std::size_t kBatch = 64;  // fragments per batch of the fast gather
 
 // The fast gather's state between fragments; the loop over fragments
 // (gather_fragments) keeps its own in locals, and calls out of line only at a
@@ -49,28 +92,50 @@ public:
         float* const normal_y = out_.channel(C::normal_y);
         float* const normal_z = out_.channel(C::normal_z);
         const std::uint64_t key_base = std::uint64_t(table_.epoch) << 32;
-        const std::uint64_t* const tags = table_.tag.data();
+        std::uint64_t* const tags = table_.tag.data();
+        std::uint32_t* const entry_of_slot = table_.entry_of_slot.data();
+        std::uint32_t* const entry_of_fragment = table_.entry_of_fragment.data();
+        std::uint32_t* const new_ids = table_.new_id.data();
         const GatheredTriangle* const entries = table_.entry.data();
         const Material* run_material = nullptr;
-        for (std::size_t i = 0; i < count; ++i) {
-            const std::uint32_t id = id_of(i);
-            const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
-            // Mispredicted once per triangle of the tile, not at every change of triangle.
-            const std::size_t slot = TriangleTable::slot(id);
-            if (tags[slot] != (key_base | id)) [[unlikely]]
-                set_up(slot, id, key_base);
-            const GatheredTriangle& t = entries[slot];
-            if (t.material != run_material) [[unlikely]]
-                run_material = start_run(t, i);
-            const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w, lambda1, lambda2);
-            // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
-            const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
-            const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
-            world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
-            normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
-            if (t.beyond_plain) [[unlikely]] {
-                const auto [x, y] = xy_of(i);
-                add_extras_at(i, slot, x, y, lambda1, lambda2, b1, b2);
+        std::size_t entry_count = 0;
+        // In batches, each in three loops, so that no branch depends on whether
+        // a fragment's triangle is new (at 720p that was one miss per ~2 fragments):
+        // which fragments meet a new triangle, without a branch; the new
+        // triangles' set-ups; the fragments. An entry is indexed by set-up, not
+        // by slot, so a later triangle in the same slot does not overwrite it.
+        for (std::size_t begin = 0; begin < count; begin += kBatch) {
+            const std::size_t end = std::min(count, begin + kBatch), first_new = entry_count;
+            for (std::size_t i = begin; i < end; ++i) {
+                const std::uint32_t id = id_of(i);
+                const std::size_t slot = TriangleTable::slot(id);
+                const bool is_new = tags[slot] != (key_base | id);
+                tags[slot] = key_base | id;
+                new_ids[entry_count] = id;  // kept where is_new
+                // A mask, not ?:, which g++ compiles to a branch here.
+                const std::uint32_t new_mask = 0u - std::uint32_t(is_new);
+                const std::uint32_t entry = (std::uint32_t(entry_count) & new_mask) | (entry_of_slot[slot] & ~new_mask);
+                entry_of_slot[slot] = entry;
+                entry_of_fragment[i] = entry;
+                entry_count += std::size_t(is_new);
+            }
+            for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
+            for (std::size_t i = begin; i < end; ++i) {
+                const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
+                const std::size_t entry = entry_of_fragment[i];
+                const GatheredTriangle& t = entries[entry];
+                if (t.material != run_material) [[unlikely]]
+                    run_material = start_run(t, i);
+                const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
+                // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+                const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
+                const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
+                world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
+                normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
+                if (t.beyond_plain) [[unlikely]] {
+                    const auto [x, y] = xy_of(i);
+                    add_extras_at(i, entry, x, y, lambda1, lambda2, b1, b2);
+                }
             }
         }
         if (!runs_.empty()) {
@@ -82,27 +147,58 @@ public:
     }
 
 private:
-    // Sets up triangle `id` in table slot `slot`, as SurfaceGather::add sets up
-    // its cached triangle, operation for operation.
-    [[gnu::noinline]] void set_up(std::size_t slot, std::uint32_t id, std::uint64_t key_base) {
-        table_.tag[slot] = key_base | id;
-        const TriangleCorners c = lookup_(id);
-        GatheredTriangle& t = table_.entry[slot];
-        t.material = c.material;
-        t.textured = c.material->has_maps();
-        t.beyond_plain = t.textured || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
-        for (int k = 0; k < 3; ++k) t.inv_w[k] = 1.0f / c.corner[k]->clip_pos.w;
-        const glm::vec3 world0 = c.corner[0]->world_pos, normal0 = c.corner[0]->normal;
-        t.world0 = float4_from(world0);
-        t.world_d1 = float4_from(c.corner[1]->world_pos - world0), t.world_d2 = float4_from(c.corner[2]->world_pos - world0);
-        t.normal0 = float4_from(normal0);
-        t.normal_d1 = float4_from(c.corner[1]->normal - normal0), t.normal_d2 = float4_from(c.corner[2]->normal - normal0);
-        if (t.beyond_plain) {
-            GatheredTriangleExtras& e = table_.extras[slot];
-            e.corners = c;
-            e.uv0 = c.corner[0]->uv;
-            e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
+    // Sets up triangle `id` in table entry `entry`, as SurfaceGather::add sets up
+    // its cached triangle, operation for operation. A SplitCornerLookup's plain
+    // form serves plain triangles; the full TriangleCorners only the others.
+    [[gnu::noinline]] void set_up(std::size_t entry, std::uint32_t id) {
+        GatheredTriangle& t = table_.entry[entry];
+        if constexpr (requires { lookup_.plain(id); }) {
+            const PlainCorners p = lookup_.plain(id);
+            set_up_geometry(t, p.corner, p.material);
+            t.beyond_plain = p.beyond_plain;
+            t.textured = false;
+            if (p.beyond_plain) [[unlikely]]
+                set_up_extras_of(entry, t, id);
+        } else {
+            const TriangleCorners c = lookup_(id);
+            set_up_geometry(t, c.corner, c.material);
+            t.beyond_plain = c.material->has_maps() || c.color[0] != nullptr || c.material->alpha_mode == AlphaMode::blend;
+            t.textured = false;
+            if (t.beyond_plain) set_up_extras(entry, t, c);
         }
+    }
+
+    // 1/w and the corner differences: lane-wise IEEE operations, the same
+    // bits per component as the reference's scalar ones.
+    static void set_up_geometry(GatheredTriangle& t, const geometry::ShadedVertex* const (&corner)[3],
+                                const Material* material) {
+        t.material = material;
+        const Float4 w = {corner[0]->clip_pos.w, corner[1]->clip_pos.w, corner[2]->clip_pos.w, 1.0f};
+        const Float4 inv_w = Float4{1.0f, 1.0f, 1.0f, 1.0f} / w;
+        static_assert(sizeof t.inv_w == sizeof inv_w);
+        std::memcpy(&t.inv_w, &inv_w, sizeof inv_w);
+        const Float4 world0 = load_vec3<kWorldPosOffset>(*corner[0]);
+        const Float4 normal0 = load_vec3<kNormalOffset>(*corner[0]);
+        t.world0 = world0;
+        t.world_d1 = load_vec3<kWorldPosOffset>(*corner[1]) - world0;
+        t.world_d2 = load_vec3<kWorldPosOffset>(*corner[2]) - world0;
+        t.normal0 = normal0;
+        t.normal_d1 = load_vec3<kNormalOffset>(*corner[1]) - normal0;
+        t.normal_d2 = load_vec3<kNormalOffset>(*corner[2]) - normal0;
+    }
+
+    // Out of line, so that the plain set-up keeps no TriangleCorners on its stack.
+    [[gnu::noinline]] void set_up_extras_of(std::size_t entry, GatheredTriangle& t, std::uint32_t id) {
+        set_up_extras(entry, t, lookup_.full(id));
+    }
+
+    // A beyond-plain triangle: its whole corners and texture coordinates for the extras.
+    [[gnu::noinline]] void set_up_extras(std::size_t entry, GatheredTriangle& t, const TriangleCorners& c) {
+        t.textured = c.material->has_maps();
+        GatheredTriangleExtras& e = table_.extras[entry];
+        e.corners = c;
+        e.uv0 = c.corner[0]->uv;
+        e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
     }
 
     // A run of material t.material begins at fragment i; the last run's plain
@@ -119,14 +215,14 @@ private:
 
     // Fragment i is textured, vertex-coloured or blended: its material
     // channels now (the colours multiply them), then the reference's extras.
-    [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t slot, int x, int y, float lambda1, float lambda2,
+    [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t entry, int x, int y, float lambda1, float lambda2,
                                          float b1, float b2) {
         out_.set_material(material_filled_, i + 1, *runs_.back().material);
         material_filled_ = i + 1;
-        const GatheredTriangle& t = table_.entry[slot];
-        const GatheredTriangleExtras& e = table_.extras[slot];
+        const GatheredTriangle& t = table_.entry[entry];
+        const GatheredTriangleExtras& e = table_.extras[entry];
         const glm::vec3 world_d1 = vec3_from(t.world_d1), world_d2 = vec3_from(t.world_d2);
-        const SurfaceInterpolants interpolants{t.inv_w, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
+        const SurfaceInterpolants interpolants{t.inv_w.lanes, world_d1, world_d2, e.uv0, e.uv_d1, e.uv_d2};
         add_extras(e.corners, interpolants, x, y, lambda1, lambda2, b1, b2, out_, i);
     }
 

@@ -2,7 +2,8 @@
 // per run) against the reference gather: bit-identical fragments and the same
 // material runs, on random tiles and fragment lists (4× MSAA, blending) with
 // plain, textured, vertex-coloured and blended materials, with triangle ids
-// that collide in the table.
+// that collide in the table; with a lookup of TriangleCorners and with a
+// SplitCornerLookup (plain corners, the full ones only beyond plain).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -92,6 +93,16 @@ struct RandomScene {
             for (int k = 0; k < 3; ++k) c.color[k] = &colors[t.corner[k]];
         return c;
     }
+
+    // The plain form of a SplitCornerLookup, as the renderer's (beyond_plain per object there).
+    PlainCorners plain(std::uint32_t id) const {
+        const Triangle& t = triangles.at(index_of(id));
+        const Material& m = materials[t.material];
+        return {{&vertices[t.corner[0]], &vertices[t.corner[1]], &vertices[t.corner[2]]},
+                &m,
+                m.has_maps() || t.colors || m.alpha_mode == AlphaMode::blend};
+    }
+    bool beyond_plain(std::uint32_t id) const { return plain(id).beyond_plain; }
 };
 
 // A triangle id per fragment, in runs as a rasterized tile has them: the
@@ -152,6 +163,13 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
     std::mt19937 rng(20261124);
     const RandomScene scene(rng);
     const auto lookup = [&](std::uint32_t id) { return scene.corners(id); };
+    std::size_t full_asked = 0, full_asked_for_plain = 0;
+    const SplitCornerLookup split_lookup{[&](std::uint32_t id) { return scene.plain(id); },
+                                         [&](std::uint32_t id) {
+                                             ++full_asked;
+                                             full_asked_for_plain += scene.beyond_plain(id) ? 0 : 1;
+                                             return scene.corners(id);
+                                         }};
     constexpr int kSide = 32;
     FragmentBuffer reference, fast;
     reference.reserve(kSide * kSide), fast.reserve(kSide * kSide);
@@ -184,7 +202,14 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
         const std::size_t fast_count =
             gather_surface_points(kFast, tile, width, height, lookup, fast, fast_runs);
         check_same_fragments(count, reference, reference_runs, fast_count, fast, fast_runs);
+        // The lookup in two forms: the same bits, the full form asked for beyond-plain triangles only.
+        fill_unwritten(fast);
+        const std::size_t split_count =
+            gather_surface_points(kFast, tile, width, height, split_lookup, fast, fast_runs);
+        check_same_fragments(count, reference, reference_runs, split_count, fast, fast_runs);
     }
+    CHECK(full_asked > 0);
+    CHECK(full_asked_for_plain == 0);
     CHECK(extras > 1000);  // the textured and blended paths were exercised
     CHECK(materials_seen == (std::size_t(1) << scene.materials.size()) - 1);
     MESSAGE(fragments, " fragments in 60 tiles, ", extras, " of them textured or blended");
@@ -194,6 +219,8 @@ TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the refere
     std::mt19937 rng(4242);
     const RandomScene scene(rng);
     const auto lookup = [&](std::uint32_t id) { return scene.corners(id); };
+    const SplitCornerLookup split_lookup{[&](std::uint32_t id) { return scene.plain(id); },
+                                         [&](std::uint32_t id) { return scene.corners(id); }};
     constexpr int kSide = 16;
     constexpr std::size_t kMaxFragments = 4 * kSide * kSide;
     FragmentBuffer reference, fast;
@@ -221,6 +248,9 @@ TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the refere
         const std::size_t fast_count =
             gather_surface_points(kFast, list, lookup, fast, fast_runs);
         check_same_fragments(gathered, reference, reference_runs, fast_count, fast, fast_runs);
+        fill_unwritten(fast);
+        const std::size_t split_count = gather_surface_points(kFast, list, split_lookup, fast, fast_runs);
+        check_same_fragments(gathered, reference, reference_runs, split_count, fast, fast_runs);
     }
 }
 
