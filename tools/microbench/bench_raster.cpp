@@ -111,6 +111,16 @@ std::vector<RasterTriangle> tile_triangles(const SizeClass& size) {
     return triangles;
 }
 
+// Triangles per second of `state`'s iterations of `batch` triangles, and the
+// fragments they covered.
+void report_rasterized(benchmark::State& state, std::size_t batch, const raster::RasterCounters& counters) {
+    const auto rasterized = double(state.iterations()) * double(batch);
+    state.SetItemsProcessed(std::int64_t(rasterized));
+    // Covered pixel centres, whether or not they pass the depth test.
+    state.counters["fragments"] = benchmark::Counter(double(counters.fragments), benchmark::Counter::kIsRate);
+    state.counters["frags_per_tri"] = double(counters.fragments) / rasterized;
+}
+
 // Rasterizes a batch of triangles into a freshly reset tile per iteration.
 // The reset (depth back to 1: 16 KB of stores) is timed too, as the renderer
 // pays it once per tile; raster/tile_reset is its cost alone.
@@ -134,11 +144,7 @@ void bench_rasterize(benchmark::State& state, const SizeClass& size, std::option
         benchmark::DoNotOptimize(buffers.depth.data());
         benchmark::ClobberMemory();
     }
-    const auto rasterized = double(state.iterations()) * double(size.batch);
-    state.SetItemsProcessed(std::int64_t(rasterized));
-    // Covered pixel centres, whether or not they pass the depth test.
-    state.counters["fragments"] = benchmark::Counter(double(counters.fragments), benchmark::Counter::kIsRate);
-    state.counters["frags_per_tri"] = double(counters.fragments) / rasterized;
+    report_rasterized(state, size.batch, counters);
     state.counters["depth_pass"] = double(counters.depth_passed) / double(std::max<std::uint64_t>(counters.fragments, 1));
 }
 
@@ -161,10 +167,7 @@ void bench_rasterize_bin(benchmark::State& state, const SizeClass& size, Isa isa
         benchmark::DoNotOptimize(buffers.depth.data());
         benchmark::ClobberMemory();
     }
-    const auto rasterized = double(state.iterations()) * double(size.batch);
-    state.SetItemsProcessed(std::int64_t(rasterized));
-    state.counters["fragments"] = benchmark::Counter(double(counters.fragments), benchmark::Counter::kIsRate);
-    state.counters["frags_per_tri"] = double(counters.fragments) / rasterized;
+    report_rasterized(state, size.batch, counters);
 }
 
 void bench_tile_reset(benchmark::State& state) {
