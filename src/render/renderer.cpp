@@ -389,10 +389,10 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
             chunk.object = std::uint32_t(o);
             chunk.first_triangle = first;
             chunk.triangle_count = std::min(render::kChunkTriangles, triangles - first);
-            chunk.blended = scene.materials[scene.objects[o].material].alpha_mode == AlphaMode::blend;
+            chunk.material = &scene.materials[scene.objects[o].material];
+            chunk.blended = chunk.material->alpha_mode == AlphaMode::blend;
             const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
             chunk.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
-            chunk.material = &scene.materials[scene.objects[o].material];
             chunk.beyond_plain = chunk.material->has_maps() || chunk.colors != nullptr || chunk.blended;
         }
     }

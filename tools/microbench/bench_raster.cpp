@@ -121,12 +121,12 @@ void report_rasterized(benchmark::State& state, std::size_t batch, const raster:
     state.counters["frags_per_tri"] = double(counters.fragments) / rasterized;
 }
 
-// Rasterizes a batch of triangles into a freshly reset tile per iteration.
+// Rasterizes a batch of triangles into a freshly reset tile per iteration:
+// draw(triangles, first, buffers, counters) draws triangles [first, first + batch).
 // The reset (depth back to 1: 16 KB of stores) is timed too, as the renderer
 // pays it once per tile; raster/tile_reset is its cost alone.
-// isa = nullopt: the scalar reference overload.
-void bench_rasterize(benchmark::State& state, const SizeClass& size, std::optional<Isa> isa) {
-    if (isa && skip_if_unsupported(state, *isa)) return;
+template <class Draw>
+raster::RasterCounters rasterize_batches(benchmark::State& state, const SizeClass& size, Draw&& draw) {
     const std::vector<RasterTriangle> triangles = tile_triangles(size);
     raster::TileBuffers buffers;
     buffers.reset(kTileSide);
@@ -134,17 +134,28 @@ void bench_rasterize(benchmark::State& state, const SizeClass& size, std::option
     std::size_t first = 0;
     for (auto _ : state) {
         buffers.reset(kTileSide);
-        for (std::size_t i = first; i < first + size.batch; ++i) {
-            if (isa)
-                raster::rasterize_triangle(*isa, triangles[i], std::uint32_t(i), kTile, buffers, counters);
-            else
-                raster::rasterize_triangle(triangles[i], std::uint32_t(i), kTile, buffers, counters);
-        }
+        draw(triangles, first, buffers, counters);
         first = (first + size.batch) % triangles.size();
         benchmark::DoNotOptimize(buffers.depth.data());
         benchmark::ClobberMemory();
     }
     report_rasterized(state, size.batch, counters);
+    return counters;
+}
+
+// A call per triangle. isa = nullopt: the scalar reference overload.
+void bench_rasterize(benchmark::State& state, const SizeClass& size, std::optional<Isa> isa) {
+    if (isa && skip_if_unsupported(state, *isa)) return;
+    const raster::RasterCounters counters = rasterize_batches(
+        state, size, [&](const std::vector<RasterTriangle>& triangles, std::size_t first, raster::TileBuffers& buffers,
+                         raster::RasterCounters& counters) {
+            for (std::size_t i = first; i < first + size.batch; ++i) {
+                if (isa)
+                    raster::rasterize_triangle(*isa, triangles[i], std::uint32_t(i), kTile, buffers, counters);
+                else
+                    raster::rasterize_triangle(triangles[i], std::uint32_t(i), kTile, buffers, counters);
+            }
+        });
     state.counters["depth_pass"] = double(counters.depth_passed) / double(std::max<std::uint64_t>(counters.fragments, 1));
 }
 
@@ -152,22 +163,13 @@ void bench_rasterize(benchmark::State& state, const SizeClass& size, std::option
 // chunk's bin: one call for all (raster/bin_rasterizer.hpp).
 void bench_rasterize_bin(benchmark::State& state, const SizeClass& size, Isa isa) {
     if (skip_if_unsupported(state, isa)) return;
-    const std::vector<RasterTriangle> triangles = tile_triangles(size);
-    std::vector<std::uint32_t> bin(triangles.size());
+    std::vector<std::uint32_t> bin(size.batch * kBatchesInPool);
     for (std::size_t i = 0; i < bin.size(); ++i) bin[i] = std::uint32_t(i);
-    raster::TileBuffers buffers;
-    buffers.reset(kTileSide);
-    raster::RasterCounters counters;
-    std::size_t first = 0;
-    for (auto _ : state) {
-        buffers.reset(kTileSide);
+    rasterize_batches(state, size, [&](const std::vector<RasterTriangle>& triangles, std::size_t first,
+                                       raster::TileBuffers& buffers, raster::RasterCounters& counters) {
         raster::rasterize_bin(isa, triangles.data(), std::span(bin).subspan(first, size.batch), 0, kTile, buffers,
                               counters);
-        first = (first + size.batch) % triangles.size();
-        benchmark::DoNotOptimize(buffers.depth.data());
-        benchmark::ClobberMemory();
-    }
-    report_rasterized(state, size.batch, counters);
+    });
 }
 
 void bench_tile_reset(benchmark::State& state) {
