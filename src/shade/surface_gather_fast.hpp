@@ -8,8 +8,10 @@
 //  - given a SplitCornerLookup, a plain triangle's set-up looks up only its
 //    corners and material (the full TriangleCorners only beyond plain): at
 //    720p, with ~1.3 px triangles, there is a set-up per ~2 fragments;
-//  - plain fragments (untextured, no vertex colours, not blended) get their
-//    material's six channels filled per run of one material, not per fragment;
+//  - plain fragments (untextured, no vertex colours, not blended) get no
+//    material channels: a run of them is marked plain (MaterialRun::plain),
+//    and the kernels (shade_fragment_runs) take its material from the run;
+//    FragmentBuffer::fill_plain_runs fills them where channels are read;
 //  - the covered pixels are listed without a branch per pixel;
 //  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
 //    same IEEE operations per component as the reference's glm;
@@ -147,10 +149,7 @@ public:
                 }
             }
         }
-        if (!runs_.empty()) {
-            runs_.back().end = std::uint32_t(count);
-            out_.set_material(material_filled_, count, *runs_.back().material);
-        }
+        if (!runs_.empty()) end_run(count);
         out_.pad(count);
         return count;
     }
@@ -210,22 +209,29 @@ private:
         e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
     }
 
-    // A run of material t.material begins at fragment i; the last run's plain
-    // fragments get their material. Returns the new run's material.
+    // The last run ends before fragment i. A plain run's material channels stay
+    // unfilled (the kernels take its material from the run); in a run that is
+    // not, the plain fragments after the last beyond-plain one get theirs.
+    void end_run(std::size_t i) {
+        MaterialRun& run = runs_.back();
+        run.end = std::uint32_t(i);
+        if (!run.plain) out_.set_material(material_filled_, i, *run.material);
+    }
+
+    // A run of material t.material begins at fragment i. Returns its material.
     [[gnu::noinline]] const Material* start_run(const GatheredTriangle& t, std::size_t i) {
-        if (!runs_.empty()) {
-            runs_.back().end = std::uint32_t(i);
-            out_.set_material(material_filled_, i, *runs_.back().material);
-        }
+        if (!runs_.empty()) end_run(i);
         material_filled_ = i;
-        runs_.push_back({std::uint32_t(i), 0, t.material, t.textured});
+        runs_.push_back({std::uint32_t(i), 0, t.material, t.textured, true});
         return t.material;
     }
 
-    // Fragment i is textured, vertex-coloured or blended: its material
-    // channels now (the colours multiply them), then the reference's extras.
+    // Fragment i is textured, vertex-coloured or blended: its run is not plain;
+    // its material channels now, and those of the run's fragments before it
+    // (the colours multiply them), then the reference's extras.
     [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t entry, int x, int y, float lambda1, float lambda2,
                                          float b1, float b2) {
+        runs_.back().plain = false;
         out_.set_material(material_filled_, i + 1, *runs_.back().material);
         material_filled_ = i + 1;
         const GatheredTriangle& t = table_.entry[entry];
