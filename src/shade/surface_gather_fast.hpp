@@ -28,6 +28,7 @@
 #include <cstring>
 #include <utility>
 
+#include <xmmintrin.h>
 #include <emmintrin.h>
 
 #include "shade/surface_gather.hpp"
@@ -78,6 +79,25 @@ alignas(16) inline constexpr std::uint32_t kPackedLanes[16][4] = {
     {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0}, {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
 // Set bits of each 4-bit mask (x86-64's baseline has no popcnt).
 inline constexpr std::uint8_t kSetBits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+// raster::perspective_barycentrics of four fragments, lane k of triangle t[k]:
+// the same IEEE operations, lane by lane.
+inline std::pair<Float4, Float4> perspective_barycentrics4(const GatheredTriangle* const (&t)[4], const Float4& lambda1,
+                                                           const Float4& lambda2) {
+    __m128 w0 = _mm_load_ps(t[0]->inv_w.lanes.data()), w1 = _mm_load_ps(t[1]->inv_w.lanes.data());
+    __m128 w2 = _mm_load_ps(t[2]->inv_w.lanes.data()), w3 = _mm_load_ps(t[3]->inv_w.lanes.data());
+    _MM_TRANSPOSE4_PS(w0, w1, w2, w3);  // w0, w1, w2: 1/w of corners 0, 1, 2 of the four triangles
+    const Float4 q0 = (1.0f - lambda1 - lambda2) * Float4(w0), q1 = lambda1 * Float4(w1), q2 = lambda2 * Float4(w2);
+    const Float4 inv_sum = 1.0f / (q0 + q1 + q2);
+    return {q1 * inv_sum, q2 * inv_sum};
+}
+
+// Four (x, y, z, ·) vectors into x[0..3], y[0..3], z[0..3].
+inline void store_transposed(const Float4 (&v)[4], float* x, float* y, float* z) {
+    __m128 r0 = __m128(v[0]), r1 = __m128(v[1]), r2 = __m128(v[2]), r3 = __m128(v[3]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    _mm_storeu_ps(x, r0), _mm_storeu_ps(y, r1), _mm_storeu_ps(z, r2);
+}
 
 // The fast gather's state between fragments; the loop over fragments
 // (gather_fragments) keeps its own in locals, and calls out of line only at a
@@ -131,14 +151,42 @@ public:
                 entry_count += std::size_t(is_new);
             }
             for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
-            for (std::size_t i = begin; i < end; ++i) {
+            // Four fragments at a time: their barycentrics as vectors (the
+            // reference's operations lane by lane), their WorldPos and Normal as
+            // 4-float vectors each, transposed into the channels.
+            std::size_t i = begin;
+            for (; i + 4 <= end; i += 4) {
+                const std::uint32_t entry[4] = {entry_of_fragment[i], entry_of_fragment[i + 1],
+                                                entry_of_fragment[i + 2], entry_of_fragment[i + 3]};
+                const GatheredTriangle* const t[4] = {&entries[entry[0]], &entries[entry[1]], &entries[entry[2]],
+                                                      &entries[entry[3]]};
+                const Float4 lambda1 = {lambda1_of(i), lambda1_of(i + 1), lambda1_of(i + 2), lambda1_of(i + 3)};
+                const Float4 lambda2 = {lambda2_of(i), lambda2_of(i + 1), lambda2_of(i + 2), lambda2_of(i + 3)};
+                const auto [b1, b2] = perspective_barycentrics4(t, lambda1, lambda2);
+                Float4 world[4], normal[4];
+                for (int k = 0; k < 4; ++k) {
+                    // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+                    world[k] = t[k]->world0 + b1[k] * t[k]->world_d1 + b2[k] * t[k]->world_d2;
+                    normal[k] = t[k]->normal0 + b1[k] * t[k]->normal_d1 + b2[k] * t[k]->normal_d2;
+                }
+                store_transposed(world, world_x + i, world_y + i, world_z + i);
+                store_transposed(normal, normal_x + i, normal_y + i, normal_z + i);
+                for (int k = 0; k < 4; ++k) {
+                    if (t[k]->material != run_material) [[unlikely]]
+                        run_material = start_run(*t[k], i + k);
+                    if (t[k]->beyond_plain) [[unlikely]] {
+                        const auto [x, y] = xy_of(i + k);
+                        add_extras_at(i + k, entry[k], x, y, lambda1[k], lambda2[k], b1[k], b2[k]);
+                    }
+                }
+            }
+            for (; i < end; ++i) {
                 const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
                 const std::size_t entry = entry_of_fragment[i];
                 const GatheredTriangle& t = entries[entry];
                 if (t.material != run_material) [[unlikely]]
                     run_material = start_run(t, i);
                 const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
-                // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
                 const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
                 const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
                 world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
