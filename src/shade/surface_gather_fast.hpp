@@ -130,6 +130,7 @@ public:
         const GatheredTriangle* const entries = table_.entry.data();
         const Material* run_material = nullptr;
         std::size_t entry_count = 0;
+        alignas(16) float batch_b1[kBatch], batch_b2[kBatch];  // perspective barycentrics of a batch's fours
         // In batches, each in three loops, so that no branch depends on whether
         // a fragment's triangle is new (at 720p that was one miss per ~2 fragments):
         // which fragments meet a new triangle, without a branch; the new
@@ -151,18 +152,31 @@ public:
                 entry_count += std::size_t(is_new);
             }
             for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
-            // Four fragments at a time: their barycentrics as vectors (the
-            // reference's operations lane by lane), their WorldPos and Normal as
-            // 4-float vectors each, transposed into the channels.
+            // Four fragments at a time: first the batch's barycentrics as
+            // vectors (the reference's operations lane by lane), in a loop of
+            // its own so that the divisions of several fours overlap; then
+            // their WorldPos and Normal as 4-float vectors each, transposed
+            // into the channels.
+            const std::size_t fours_end = begin + (end - begin) / 4 * 4;
+            for (std::size_t i = begin; i < fours_end; i += 4) {
+                const GatheredTriangle* const t[4] = {&entries[entry_of_fragment[i]], &entries[entry_of_fragment[i + 1]],
+                                                      &entries[entry_of_fragment[i + 2]],
+                                                      &entries[entry_of_fragment[i + 3]]};
+                const Float4 lambda1 = {lambda1_of(i), lambda1_of(i + 1), lambda1_of(i + 2), lambda1_of(i + 3)};
+                const Float4 lambda2 = {lambda2_of(i), lambda2_of(i + 1), lambda2_of(i + 2), lambda2_of(i + 3)};
+                const auto [b1, b2] = perspective_barycentrics4(t, lambda1, lambda2);
+                std::memcpy(&batch_b1[i - begin], &b1, sizeof b1);
+                std::memcpy(&batch_b2[i - begin], &b2, sizeof b2);
+            }
             std::size_t i = begin;
-            for (; i + 4 <= end; i += 4) {
+            for (; i < fours_end; i += 4) {
                 const std::uint32_t entry[4] = {entry_of_fragment[i], entry_of_fragment[i + 1],
                                                 entry_of_fragment[i + 2], entry_of_fragment[i + 3]};
                 const GatheredTriangle* const t[4] = {&entries[entry[0]], &entries[entry[1]], &entries[entry[2]],
                                                       &entries[entry[3]]};
-                const Float4 lambda1 = {lambda1_of(i), lambda1_of(i + 1), lambda1_of(i + 2), lambda1_of(i + 3)};
-                const Float4 lambda2 = {lambda2_of(i), lambda2_of(i + 1), lambda2_of(i + 2), lambda2_of(i + 3)};
-                const auto [b1, b2] = perspective_barycentrics4(t, lambda1, lambda2);
+                Float4 b1, b2;
+                std::memcpy(&b1, &batch_b1[i - begin], sizeof b1);
+                std::memcpy(&b2, &batch_b2[i - begin], sizeof b2);
                 Float4 world[4], normal[4];
                 for (int k = 0; k < 4; ++k) {
                     // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
@@ -176,7 +190,7 @@ public:
                         run_material = start_run(*t[k], i + k);
                     if (t[k]->beyond_plain) [[unlikely]] {
                         const auto [x, y] = xy_of(i + k);
-                        add_extras_at(i + k, entry[k], x, y, lambda1[k], lambda2[k], b1[k], b2[k]);
+                        add_extras_at(i + k, entry[k], x, y, lambda1_of(i + k), lambda2_of(i + k), b1[k], b2[k]);
                     }
                 }
             }
