@@ -13,8 +13,10 @@
 //    and the kernels (shade_fragment_runs) take its material from the run;
 //    FragmentBuffer::fill_plain_runs fills them where channels are read;
 //  - the covered pixels are listed without a branch per pixel;
-//  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
-//    same IEEE operations per component as the reference's glm;
+//  - fragments go four at a time: their barycentrics as one vector (a
+//    batch's first, in a loop of their own), WorldPos and Normal as 4-float
+//    vectors (Float4) transposed into the channels; the same IEEE operations
+//    per lane and component as the reference's glm;
 //  - the table is probed for a batch of fragments without a branch, then the
 //    batch's new triangles are set up, then its fragments gathered: the
 //    probe's miss (once per triangle of the tile) is no mispredicted branch;
