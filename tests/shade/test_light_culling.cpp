@@ -148,6 +148,35 @@ TEST_CASE("fragment_bounds") {
     CHECK(b.max == glm::vec3(3.0f, 0.5f, 9.0f));
 }
 
+TEST_CASE("fragment_bounds equals glm's one-by-one fold for every count, NaNs after the first passed over") {
+    // The fold the bounds are defined by: glm::min/max from the first point on.
+    std::mt19937 rng(77);
+    for (std::size_t count = 1; count <= 70; ++count) {
+        for (int trial = 0; trial < 20; ++trial) {
+            std::vector<float> axes[3];
+            for (auto& axis : axes) {
+                for (std::size_t i = 0; i < count; ++i) axis.push_back(uniform(rng, -100.0f, 100.0f));
+                if (count > 1 && trial % 4 == 1) {  // a NaN somewhere after the first
+                    axis[std::uniform_int_distribution<std::size_t>(1, count - 1)(rng)] = NAN;
+                }
+                if (trial % 4 == 2) axis[count - 1] = -1000.0f;  // the extreme in the scalar tail
+            }
+            FragmentInputs in;
+            in.count = count;
+            in.world_x = axes[0].data(), in.world_y = axes[1].data(), in.world_z = axes[2].data();
+            glm::vec3 min(axes[0][0], axes[1][0], axes[2][0]), max = min;
+            for (std::size_t i = 1; i < count; ++i) {
+                const glm::vec3 p(axes[0][i], axes[1][i], axes[2][i]);
+                min = glm::min(min, p), max = glm::max(max, p);
+            }
+            const WorldBounds b = fragment_bounds(in);
+            CAPTURE(count);
+            CHECK(b.min == min);
+            CHECK(b.max == max);
+        }
+    }
+}
+
 TEST_CASE("select_reaching never drops a light that reaches a point of the box, nor marks one that misses one") {
     // Boxes around random points; lights whose range sphere passes through (or
     // within an ulp or two of) one of the points, seen from every side: the
