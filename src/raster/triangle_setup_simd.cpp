@@ -6,6 +6,7 @@
 // coordinate deltas stay below 2^14 so that every product stays below 2^30.
 // Larger triangles, and those that need clipping, are handed back to the
 // scalar code.
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -116,16 +117,22 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
                   sizeof(RasterTriangle) == 64,
               "to_records() writes RasterTriangle as x[3], y[3], px_min..py_max, inv_area, depth[3], vertex[3], pad");
 
-// Lane j's record from word w of words[w] for every w: a transpose of 16 × lanes
-// words (intrinsics: xsimd 8.1 has no transpose or scatter).
-void to_records(const Int (&words)[16], RasterTriangle* records) {
+// The kept lanes' records (bit j of `kept`: lane j's), one after another
+// from `records`, lane j's from word w of words[w] for every w: a transpose of
+// 16 × lanes words (intrinsics: xsimd 8.1 has no transpose or scatter). Each
+// lane's record is stored where the next kept one goes, lanes in order, so a
+// dropped lane's is overwritten by the next kept lane's or lies past the
+// last: no branch per lane, and no record is copied again.
+void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
+    std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
+    for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
 #if defined(__AVX2__) && !defined(__AVX512F__)
     // Two 8 × 8 transposes: words 0-7 and 8-15, each lane's half of a record.
     for (int part = 0; part < 2; ++part) {
         __m256 r[8];
         for (int w = 0; w < 8; ++w) r[w] = _mm256_castsi256_ps(words[8 * part + w]);
         simd::transpose8x8(r);
-        for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[j]) + 8 * part, r[j]);
+        for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 8 * part, r[j]);
     }
 #elif !defined(__AVX__)
     // Four 4 × 4 transposes, a quarter of each record each.
@@ -133,15 +140,16 @@ void to_records(const Int (&words)[16], RasterTriangle* records) {
         __m128 r[4];
         for (int w = 0; w < 4; ++w) r[w] = _mm_castsi128_ps(words[4 * part + w]);
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
-        for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[j]) + 4 * part, r[j]);
+        for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 4 * part, r[j]);
     }
 #else
     alignas(64) std::int32_t lanes[16][kLanes];
     for (int w = 0; w < 16; ++w) words[w].store_aligned(lanes[w]);
-    for (int j = 0; j < kLanes; ++j) {
+    for (std::uint64_t bits = kept; bits != 0; bits &= bits - 1) {
+        const int j = std::countr_zero(bits);
         std::int32_t record[16];
         for (int w = 0; w < 16; ++w) record[w] = lanes[w][j];
-        std::memcpy(&records[j], record, sizeof(record));
+        std::memcpy(&records[at[j]], record, sizeof(record));
     }
 #endif
 }
@@ -260,10 +268,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
                                inv_area, corner[0].depth, depth1, depth2,
                                refs[0], xsimd::select(swapped, refs[2], refs[1]),
                                xsimd::select(swapped, refs[1], refs[2]), zero};
-        alignas(64) RasterTriangle lane_records[kLanes];
-        to_records(words, lane_records);
-        for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1)
-            out.records[records++] = lane_records[__builtin_ctzll(bits)];
+        to_records(words, kept_bits, out.records + records);
+        records += std::popcount(kept_bits);
     }
 }
 
