@@ -92,10 +92,14 @@ Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
             simd::hardware_gather(screen, at + Int(2)), simd::hardware_gather(screen, at + Int(3))};
 #elif defined(__AVX2__)
     // Lanes j and j + 4 share a register, one per 128-bit half.
+    // Refs are >= 0: as unsigned, a ref's address is one shift and add away.
+    const auto vertex = [screen, ref](int j) {
+        return reinterpret_cast<const float*>(screen) + 4 * std::size_t(std::uint32_t(ref[j]));
+    };
     __m256 v[4];
     for (int j = 0; j < 4; ++j) {
-        const __m128 lo = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
-        const __m128 hi = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j + 4]));
+        const __m128 lo = _mm_loadu_ps(vertex(j));
+        const __m128 hi = _mm_loadu_ps(vertex(j + 4));
         v[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
     }
     simd::transpose4x4_halves(v);
@@ -123,7 +127,7 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
 // lane's record is stored where the next kept one goes, lanes in order, so a
 // dropped lane's is overwritten by the next kept lane's or lies past the
 // last: no branch per lane, and no record is copied again.
-void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
+[[gnu::always_inline]] inline void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
     std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
     for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
 #if defined(__AVX2__) && !defined(__AVX512F__)
@@ -154,6 +158,9 @@ void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* reco
 #endif
 }
 
+// kMsaa: in.samples is 4. A constant, so that each form keeps only its own
+// values in registers (one body for both spilled a quarter of its instructions).
+template <bool kMsaa>
 void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int half(kSubpixelScale / 2), round_up(kSubpixelScale - 1), zero(0), one(1);
     const Int last_x(in.width - 1), last_y(in.height - 1);
@@ -162,8 +169,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     // The points a pixel is tested at: its centre, or its 4 samples
     // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
     // box holds the pixels with a point between the triangle's extremes.
-    const bool msaa = in.samples != 1;
-    const int point_count = msaa ? kMsaaSamples : 1;
+    constexpr bool msaa = kMsaa;
+    constexpr int point_count = msaa ? kMsaaSamples : 1;
     const Int first_point(msaa ? 7 * kSubpixelScale / 8 : kSubpixelScale / 2);
     const Int last_point(msaa ? kSubpixelScale / 8 : kSubpixelScale / 2);
     const int padded = (in.count + kLanes - 1) / kLanes * kLanes;
@@ -276,7 +283,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
 }  // namespace
 
 void TESSERA_SIMD_ENTRY(setup_batch)(const SetupBatchInput& in, SetupBatchOutput& out) {
-    setup_batch(in, out);
+    if (in.samples == 1) setup_batch<false>(in, out);
+    else setup_batch<true>(in, out);
 }
 
 }  // namespace tessera::raster
