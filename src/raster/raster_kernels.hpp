@@ -126,7 +126,10 @@ struct SetupBatchOutput {
     std::uint64_t clipped;  // bit i: crosses a clip plane (geometry::clip_triangle)
     // Triangles neither kept, scalar nor clipped were dropped: a bad index, outside
     // one plane or not finite, no area, culled, or covering no pixel centre.
-    RasterTriangle records[kSetupBatch];  // the kept triangles' records, in order (popcount(kept) of them)
+    // Set by the caller: room for kSetupBatch records, where the kept
+    // triangles' records go in order (popcount(kept) of them; the kernel may
+    // write anything into the rest of the room).
+    RasterTriangle* records;
 };
 
 #define TESSERA_DECLARE_SETUP_KERNEL(suffix) \

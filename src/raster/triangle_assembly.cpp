@@ -96,8 +96,11 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
     in.width = c.viewport.width, in.height = c.viewport.height;
     in.samples = c.samples;
     in.culling = c.culling;
+    static_assert(kAssemblyRoom >= kSetupBatch);
     SetupBatchOutput batch;
+    std::array<RasterTriangle, kSetupBatch> aside;  // a batch's records while the scalar code's are merged in
     std::array<std::uint32_t, 3 * kSetupBatch> tail;  // the last, partial batch, padded with index 0
+    RasterTriangles& triangles = c.out.triangles;
     for (std::size_t first = 0; first < triangle_count; first += kSetupBatch) {
         in.count = int(std::min<std::size_t>(kSetupBatch, triangle_count - first));
         in.indices = c.indices.data() + 3 * first;
@@ -106,23 +109,31 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
             std::copy_n(in.indices, 3 * in.count, tail.begin());
             in.indices = tail.data();
         }
+        // The kernel writes its records straight after the ones kept so far.
+        const std::size_t kept_before = triangles.size();
+        triangles.resize(kept_before + kSetupBatch);  // uninitialized (UninitializedAllocator)
+        batch.records = triangles.data() + kept_before;
         switch (isa) {
             case simd::Isa::sse4: setup_batch_sse4(in, batch); break;
             case simd::Isa::avx2: setup_batch_avx2(in, batch); break;
             case simd::Isa::avx512: setup_batch_avx512(in, batch); break;
-            case simd::Isa::scalar: return;  // not reached: the caller runs the scalar path
+            case simd::Isa::scalar: triangles.resize(kept_before); return;  // not reached: the caller runs the scalar path
         }
+        const int kept = std::popcount(batch.kept);
         const std::uint64_t one_by_one = batch.scalar | batch.clipped;
         if (one_by_one == 0) {
-            c.out.triangles.insert(c.out.triangles.end(), batch.records, batch.records + std::popcount(batch.kept));
+            triangles.resize(kept_before + std::size_t(kept));
             continue;
         }
+        // Rare (clipping, large triangles): the records go aside and come back in order.
+        std::copy_n(triangles.data() + kept_before, kept, aside.begin());
+        triangles.resize(kept_before);
         int record = 0;
         for (std::uint64_t bits = batch.kept | one_by_one; bits != 0; bits &= bits - 1) {
             const int i = std::countr_zero(bits);
             const std::uint64_t bit = std::uint64_t(1) << i;
             if (batch.kept & bit) {
-                c.out.triangles.push_back(batch.records[record++]);
+                triangles.push_back(aside[std::size_t(record++)]);
                 continue;
             }
             const std::array<std::uint32_t, 3> ref = c.refs(first + std::size_t(i));

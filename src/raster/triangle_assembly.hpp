@@ -2,7 +2,11 @@
 // and triangle setup, into RasterTriangles ready to bin.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -21,8 +25,37 @@ struct FrameVertices {
     std::span<const geometry::ScreenVertex> screen;   // its outcode is outcodes[i]; x, y, depth valid where that has no clip-plane bit
 };
 
+// An allocator whose resize() leaves new elements of plain types
+// uninitialized: assembly grows the records by a batch's room, the setup
+// kernel writes its records there in place, and the vector shrinks back to
+// what was kept, with no zeroing and no copy of the records.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitializedAllocator<U>;
+    };
+    UninitializedAllocator() = default;
+    template <class U>
+    UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+using RasterTriangles = std::vector<RasterTriangle, UninitializedAllocator<RasterTriangle>>;
+
+// Records assembly may hold beyond the triangles it keeps, while the setup
+// kernel writes a batch in place: reserve this much more than the triangles
+// expected, or the vector grows (and copies) on a chunk's last batch.
+inline constexpr std::size_t kAssemblyRoom = 64;
+
 struct AssembledTriangles {
-    std::vector<RasterTriangle> triangles;                 // in submission order
+    RasterTriangles triangles;                             // in submission order
     std::vector<geometry::ShadedVertex> clipped_vertices;  // corners made by clipping (kClippedVertexBit refs)
     std::vector<glm::vec4> clipped_colors;  // beside clipped_vertices, for meshes with vertex colours only
     void clear() { triangles.clear(), clipped_vertices.clear(), clipped_colors.clear(); }

@@ -6,6 +6,7 @@
 // coordinate deltas stay below 2^14 so that every product stays below 2^30.
 // Larger triangles, and those that need clipping, are handed back to the
 // scalar code.
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -91,10 +92,14 @@ Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
             simd::hardware_gather(screen, at + Int(2)), simd::hardware_gather(screen, at + Int(3))};
 #elif defined(__AVX2__)
     // Lanes j and j + 4 share a register, one per 128-bit half.
+    // Refs are >= 0: as unsigned, a ref's address is one shift and add away.
+    const auto vertex = [screen, ref](int j) {
+        return reinterpret_cast<const float*>(screen) + 4 * std::size_t(std::uint32_t(ref[j]));
+    };
     __m256 v[4];
     for (int j = 0; j < 4; ++j) {
-        const __m128 lo = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j]));
-        const __m128 hi = _mm_loadu_ps(reinterpret_cast<const float*>(screen + 4 * ref[j + 4]));
+        const __m128 lo = _mm_loadu_ps(vertex(j));
+        const __m128 hi = _mm_loadu_ps(vertex(j + 4));
         v[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
     }
     simd::transpose4x4_halves(v);
@@ -116,16 +121,22 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
                   sizeof(RasterTriangle) == 64,
               "to_records() writes RasterTriangle as x[3], y[3], px_min..py_max, inv_area, depth[3], vertex[3], pad");
 
-// Lane j's record from word w of words[w] for every w: a transpose of 16 × lanes
-// words (intrinsics: xsimd 8.1 has no transpose or scatter).
-void to_records(const Int (&words)[16], RasterTriangle* records) {
+// The kept lanes' records (bit j of `kept`: lane j's), one after another
+// from `records`, lane j's from word w of words[w] for every w: a transpose of
+// 16 × lanes words (intrinsics: xsimd 8.1 has no transpose or scatter). Each
+// lane's record is stored where the next kept one goes, lanes in order, so a
+// dropped lane's is overwritten by the next kept lane's or lies past the
+// last: no branch per lane, and no record is copied again.
+[[gnu::always_inline]] inline void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
+    std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
+    for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
 #if defined(__AVX2__) && !defined(__AVX512F__)
     // Two 8 × 8 transposes: words 0-7 and 8-15, each lane's half of a record.
     for (int part = 0; part < 2; ++part) {
         __m256 r[8];
         for (int w = 0; w < 8; ++w) r[w] = _mm256_castsi256_ps(words[8 * part + w]);
         simd::transpose8x8(r);
-        for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[j]) + 8 * part, r[j]);
+        for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 8 * part, r[j]);
     }
 #elif !defined(__AVX__)
     // Four 4 × 4 transposes, a quarter of each record each.
@@ -133,19 +144,23 @@ void to_records(const Int (&words)[16], RasterTriangle* records) {
         __m128 r[4];
         for (int w = 0; w < 4; ++w) r[w] = _mm_castsi128_ps(words[4 * part + w]);
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
-        for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[j]) + 4 * part, r[j]);
+        for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 4 * part, r[j]);
     }
 #else
     alignas(64) std::int32_t lanes[16][kLanes];
     for (int w = 0; w < 16; ++w) words[w].store_aligned(lanes[w]);
-    for (int j = 0; j < kLanes; ++j) {
+    for (std::uint64_t bits = kept; bits != 0; bits &= bits - 1) {
+        const int j = std::countr_zero(bits);
         std::int32_t record[16];
         for (int w = 0; w < 16; ++w) record[w] = lanes[w][j];
-        std::memcpy(&records[j], record, sizeof(record));
+        std::memcpy(&records[at[j]], record, sizeof(record));
     }
 #endif
 }
 
+// kMsaa: in.samples is 4. A constant, so that each form keeps only its own
+// values in registers (one body for both spilled a quarter of its instructions).
+template <bool kMsaa>
 void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int half(kSubpixelScale / 2), round_up(kSubpixelScale - 1), zero(0), one(1);
     const Int last_x(in.width - 1), last_y(in.height - 1);
@@ -154,8 +169,8 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     // The points a pixel is tested at: its centre, or its 4 samples
     // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
     // box holds the pixels with a point between the triangle's extremes.
-    const bool msaa = in.samples != 1;
-    const int point_count = msaa ? kMsaaSamples : 1;
+    constexpr bool msaa = kMsaa;
+    constexpr int point_count = msaa ? kMsaaSamples : 1;
     const Int first_point(msaa ? 7 * kSubpixelScale / 8 : kSubpixelScale / 2);
     const Int last_point(msaa ? kSubpixelScale / 8 : kSubpixelScale / 2);
     const int padded = (in.count + kLanes - 1) / kLanes * kLanes;
@@ -260,17 +275,16 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
                                inv_area, corner[0].depth, depth1, depth2,
                                refs[0], xsimd::select(swapped, refs[2], refs[1]),
                                xsimd::select(swapped, refs[1], refs[2]), zero};
-        alignas(64) RasterTriangle lane_records[kLanes];
-        to_records(words, lane_records);
-        for (std::uint64_t bits = kept_bits; bits != 0; bits &= bits - 1)
-            out.records[records++] = lane_records[__builtin_ctzll(bits)];
+        to_records(words, kept_bits, out.records + records);
+        records += std::popcount(kept_bits);
     }
 }
 
 }  // namespace
 
 void TESSERA_SIMD_ENTRY(setup_batch)(const SetupBatchInput& in, SetupBatchOutput& out) {
-    setup_batch(in, out);
+    if (in.samples == 1) setup_batch<false>(in, out);
+    else setup_batch<true>(in, out);
 }
 
 }  // namespace tessera::raster

@@ -13,8 +13,8 @@ namespace tessera::render {
 // Reserves room for n elements and, if that allocated new memory, advises
 // the kernel to back the 2 MiB-aligned part of it with huge pages. Harmless
 // where transparent huge pages are off.
-template <class T>
-void reserve_huge(std::vector<T>& v, std::size_t n) {
+template <class T, class Allocator>
+void reserve_huge(std::vector<T, Allocator>& v, std::size_t n) {
     if (v.capacity() >= n) return;
     v.reserve(n);
     constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;

@@ -419,7 +419,8 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
         const std::span<const std::uint32_t> indices(
             scene.meshes[object.mesh].indices.data() + 3 * std::size_t(chunk.first_triangle), 3 * chunk.triangle_count);
         chunk.assembled.clear();
-        render::reserve_huge(chunk.assembled.triangles, chunk.triangle_count);  // most triangles stay one triangle
+        render::reserve_huge(chunk.assembled.triangles,  // most triangles stay one triangle
+                            chunk.triangle_count + raster::kAssemblyRoom);
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
                                    chunk.assembled, scene.msaa, culling_of(scene, object),

@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cstring>
 #include <random>
 
@@ -155,4 +156,63 @@ TEST_CASE("assembly through every ISA's kernel equals the scalar path: clipping,
                 CHECK(assembled.clipped_colors == reference.clipped_colors);
             }
         }
+}
+
+// The kernels store each lane's record at the next kept slot of the output,
+// where a dropped lane's is overwritten by the next kept one: every pattern of
+// kept and dropped lanes must leave exactly the kept records, in order, after
+// what the output already held. Triangle i is kept (a few pixels, covering
+// centres) or dropped (no area) by the bits of a pattern; each pattern is one
+// batch of 64, assembled after a first mesh already in the output.
+TEST_CASE("assembly keeps exactly the kept lanes' records, in order, for any pattern of kept and dropped lanes") {
+    const geometry::Viewport viewport{256, 256};
+    const geometry::GuardBand guard(viewport.width, viewport.height);
+    std::vector<std::uint64_t> patterns = {0, ~std::uint64_t{0}, 0x5555'5555'5555'5555u, 0xaaaa'aaaa'aaaa'aaaau,
+                                           0x8181'8181'8181'8181u, 0x7e7e'7e7e'7e7e'7e7eu};
+    for (int lane = 0; lane < 64; ++lane) patterns.push_back(std::uint64_t(1) << lane);         // one kept
+    for (int lane = 0; lane < 64; ++lane) patterns.push_back(~(std::uint64_t(1) << lane));      // one dropped
+    std::mt19937_64 rng(5);
+    for (int i = 0; i < 16; ++i) patterns.push_back(rng());
+    // Mesh 0: four kept triangles; then 64 triangles per pattern.
+    std::vector<geometry::ScreenVertex> screen;
+    std::vector<std::uint32_t> first_indices, indices;
+    auto add = [&](std::vector<std::uint32_t>& to, int n, bool kept) {
+        const std::int32_t x = 256 * (8 + (n % 60) * 4), y = 256 * (8 + (n / 60 % 60) * 4);
+        const std::int32_t spread = kept ? 3 * 256 : 0;  // no area: all three corners on one point
+        const float depth = float(n % 97) / 97.0f;
+        for (const auto& [dx, dy] : {std::pair{0, 0}, std::pair{spread, 0}, std::pair{0, spread}}) {
+            to.push_back(std::uint32_t(screen.size()));
+            screen.push_back({x + dx + 37, y + dy + 11, depth, 0});
+        }
+    };
+    for (int n = 0; n < 4; ++n) add(first_indices, n, true);
+    int n = 0;
+    for (const std::uint64_t pattern : patterns)
+        for (int lane = 0; lane < 64; ++lane, ++n) add(indices, n, (pattern >> lane) & 1);
+    const std::vector<std::uint32_t> outcodes(screen.size(), 0);
+    const std::vector<geometry::ShadedVertex> vertices(screen.size());
+    const raster::FrameVertices frame{vertices, outcodes, screen};
+    const std::uint32_t count = std::uint32_t(screen.size());
+
+    raster::AssembledTriangles reference;
+    raster::assemble_triangles(simd::Isa::scalar, first_indices, 0, count, frame, viewport, guard, reference);
+    raster::assemble_triangles(simd::Isa::scalar, indices, 0, count, frame, viewport, guard, reference);
+    std::size_t kept = 4;
+    for (const std::uint64_t pattern : patterns) kept += std::size_t(std::popcount(pattern));
+    REQUIRE(reference.triangles.size() == kept);  // the pattern decides, as meant
+    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+        CAPTURE(simd::isa_name(isa));
+        if (!simd::isa_supported(isa)) {
+            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+            continue;
+        }
+        raster::AssembledTriangles assembled;
+        raster::assemble_triangles(isa, first_indices, 0, count, frame, viewport, guard, assembled);
+        raster::assemble_triangles(isa, indices, 0, count, frame, viewport, guard, assembled);
+        REQUIRE(assembled.triangles.size() == reference.triangles.size());
+        int different = 0;
+        for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
+            different += !same(assembled.triangles[i], reference.triangles[i]);
+        CHECK(different == 0);
+    }
 }
