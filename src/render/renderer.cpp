@@ -719,13 +719,19 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
     if (count > 0) {
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
         const shade::FragmentInputs inputs = s.fragments.inputs(count);
-        if (settings.light_culling && lights.any_range) {
+        // The fast gather leaves plain runs' material channels unfilled; culled
+        // shading, the AOVs and the scalar kernel read them.
+        const bool culled = settings.light_culling && lights.any_range;
+        const bool channels_read = culled || !image.aov.empty() || isa == simd::Isa::scalar;
+        if (channels_read) s.fragments.fill_plain_runs(s.material_runs, count);
+        else s.fragments.fill_plain_run_edges(s.material_runs, count);
+        if (culled) {
             const shade::CulledWork work =
                 shade::shade_fragments_culled(isa, inputs, lights, s.light_culling, s.fragments.outputs());
             s.tile_light_count = std::uint32_t(work.tile_lights);
             s.fragment_lights += work.fragment_lights;
         } else {
-            shade::shade_fragments(isa, inputs, lights, s.fragments.outputs());
+            shade::shade_fragment_runs(isa, inputs, s.material_runs, lights, s.fragments.outputs());
             s.tile_light_count = std::uint32_t(lights.count());
             s.fragment_lights += count * lights.count();
         }

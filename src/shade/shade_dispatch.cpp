@@ -16,6 +16,9 @@ namespace tessera::shade {
                                   const RadianceOutputs& out);                                                 \
     void shade_fragments_in_range_##suffix(const FragmentInputs& in, const LightArrays& lights,                  \
                                            const glm::vec3& cam_pos, const RadianceOutputs& out);              \
+    void shade_fragment_runs_##suffix(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,     \
+                                      const LightArrays& lights, const glm::vec3& cam_pos,                       \
+                                      const RadianceOutputs& out);                                               \
     void tonemap_gamma_##suffix(std::size_t count, float* r, float* g, float* b);
 TESSERA_DECLARE_SIMD_ENTRIES(sse4)
 TESSERA_DECLARE_SIMD_ENTRIES(avx2)
@@ -173,6 +176,19 @@ void shade_fragments_in_range(Isa isa, const FragmentInputs& in, const ShadingLi
         case Isa::sse4: return shade_fragments_in_range_sse4(in, arrays, lights.cam_pos, out);
         case Isa::avx2: return shade_fragments_in_range_avx2(in, arrays, lights.cam_pos, out);
         case Isa::avx512: return shade_fragments_in_range_avx512(in, arrays, lights.cam_pos, out);
+    }
+}
+
+void shade_fragment_runs(Isa isa, const FragmentInputs& in, std::span<const MaterialRun> runs,
+                         const ShadingLights& lights, const RadianceOutputs& out) {
+    simd::require_supported(isa);
+    if (isa == Isa::scalar || runs.empty()) return shade_fragments(isa, in, lights, out);
+    const LightArrays arrays = light_arrays(lights);
+    switch (isa) {
+        case Isa::scalar: break;
+        case Isa::sse4: return shade_fragment_runs_sse4(in, runs.data(), runs.size(), arrays, lights.cam_pos, out);
+        case Isa::avx2: return shade_fragment_runs_avx2(in, runs.data(), runs.size(), arrays, lights.cam_pos, out);
+        case Isa::avx512: return shade_fragment_runs_avx512(in, runs.data(), runs.size(), arrays, lights.cam_pos, out);
     }
 }
 

@@ -38,6 +38,16 @@ struct FragmentInputs {
     const float* ao = nullptr;
 };
 
+// Fragments [begin, end) of a FragmentBuffer (surface_gather.hpp) that share one material.
+struct MaterialRun {
+    std::uint32_t begin = 0, end = 0;
+    const Material* material = nullptr;
+    bool textured = false;  // the material has maps: texture coordinates and derivatives were gathered
+    // Every fragment is plain (no maps, no vertex colours, not blended): its
+    // material is *material, whatever the material channels hold.
+    bool plain = false;
+};
+
 // Scene-linear HDR radiance out, one array per channel, padded as above.
 struct RadianceOutputs {
     float* r = nullptr;
@@ -122,6 +132,16 @@ void shade_fragments(Isa isa, const FragmentInputs& in, const ShadingLights& lig
 // selections), so that the result is the same for any such selection.
 void shade_fragments_in_range(Isa isa, const FragmentInputs& in, const ShadingLights& lights,
                               const LightSelection& selection, const RadianceOutputs& out);
+
+// shade_fragments over fragments in runs of one material, `runs` covering
+// [0, in.count) in order: a SIMD batch wholly inside a plain run (the padding
+// past in.count counting as the last run's) takes the run's material, any
+// other batch the fragments' material channels, which must hold their material
+// there (FragmentBuffer::fill_plain_run_edges); `--isa scalar` reads the channels
+// of every fragment (FragmentBuffer::fill_plain_runs). The same bits as
+// shade_fragments with every channel filled.
+void shade_fragment_runs(Isa isa, const FragmentInputs& in, std::span<const MaterialRun> runs,
+                         const ShadingLights& lights, const RadianceOutputs& out);
 
 // In place, over `count` (padded) values per channel: Reinhard then gamma 1/2.2,
 // the display values PNG output quantizes.

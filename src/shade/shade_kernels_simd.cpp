@@ -241,17 +241,32 @@ template <bool InRange, LightKind Kind>
     }
 }
 
-// InRange: each light is cut at its range, lane by lane (shade_pbr_within_range);
-// otherwise every light reaches every lane (shade_pbr).
+// A batch's material, per lane or the same in every lane.
+struct MaterialBatch {
+    Vec3 albedo;
+    Batch metallic, roughness, ao;
+};
+
+MaterialBatch load_material(const FragmentInputs& in, std::size_t i) {
+    return {load3(in.albedo_r, in.albedo_g, in.albedo_b, i), xsimd::load_unaligned(in.metallic + i),
+            xsimd::load_unaligned(in.roughness + i), xsimd::load_unaligned(in.ao + i)};
+}
+
+// The batch of fragments i .. i + Batch::size of material m. InRange: each
+// light is cut at its range, lane by lane (shade_pbr_within_range); otherwise
+// every light reaches every lane (shade_pbr). Inlined into a loop over a run of
+// one material, the terms of the material alone are worked out once per run
+// (the compiler hoists them), with the same operations, so the same bits.
 template <bool InRange>
-void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
-                 const RadianceOutputs& out) {
+[[gnu::always_inline]] inline void shade_batch_of(const FragmentInputs& in, std::size_t i, const MaterialBatch& m,
+                                                  const LightArrays& lights, const Vec3& cam_pos,
+                                                  const RadianceOutputs& out) {
     Surface s;
     s.world_pos = load3(in.world_x, in.world_y, in.world_z, i);
-    const Vec3 albedo = load3(in.albedo_r, in.albedo_g, in.albedo_b, i);
-    const Batch metallic = xsimd::load_unaligned(in.metallic + i);
-    const Batch roughness = xsimd::load_unaligned(in.roughness + i);
-    const Batch ao = xsimd::load_unaligned(in.ao + i);
+    const Vec3& albedo = m.albedo;
+    const Batch& metallic = m.metallic;
+    const Batch& roughness = m.roughness;
+    const Batch& ao = m.ao;
 
     // Per fragment, constant over the lights: exact 1/sqrt and divisions are cheap here.
     s.n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
@@ -272,8 +287,11 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
 
     s.four_n_dot_v = Batch(4.0f) * n_dot_v;
 
-    Sums sums;
-    sums.diffuse = sums.specular = sums.specular_w = {Batch(0.0f), Batch(0.0f), Batch(0.0f)};
+    // Zeros by member: the chained assignment of one Vec3 made g++ build the
+    // zeros in 16-byte halves on the stack and reload them as whole vectors in
+    // the run loop, a store-forwarding stall per batch.
+    const Batch zero(0.0f);
+    Sums sums{{zero, zero, zero}, {zero, zero, zero}, {zero, zero, zero}};
     add_lights<InRange, LightKind::point>(sums, s, lights, 0, lights.spot_begin);
     add_lights<InRange, LightKind::spot>(sums, s, lights, lights.spot_begin, lights.directional_begin);
     add_lights<InRange, LightKind::directional>(sums, s, lights, lights.directional_begin, lights.count);
@@ -286,11 +304,30 @@ void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lig
                               const Batch& specular_sum, const Batch& specular_w_sum) {
         const Batch lo = (Batch(1.0f) - f0_c) * (albedo_c * diffuse_scale * diffuse_sum + spec_numerator * specular_w_sum) +
                          (f0_c * spec_numerator) * specular_sum;
-        return albedo_c * ambient + lo;
+        // Fused where the ISA has FMA, as the compiler fused it when written
+        // albedo_c * ambient + lo: said explicitly, so that it stays fused where
+        // a run's material makes albedo_c * ambient loop-invariant (GCC fuses a
+        // multiply only with an add in the same basic block).
+        return xsimd::fma(albedo_c, ambient, lo);
     };
     radiance(albedo.x, f0.x, sums.diffuse.x, sums.specular.x, sums.specular_w.x).store_unaligned(out.r + i);
     radiance(albedo.y, f0.y, sums.diffuse.y, sums.specular.y, sums.specular_w.y).store_unaligned(out.g + i);
     radiance(albedo.z, f0.z, sums.diffuse.z, sums.specular.z, sums.specular_w.z).store_unaligned(out.b + i);
+}
+
+// Each fragment its material from the material channels.
+template <bool InRange>
+void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
+                 const RadianceOutputs& out) {
+    shade_batch_of<InRange>(in, i, load_material(in, i), lights, cam_pos, out);
+}
+
+// Batches [begin, end) of fragments all of material `material`.
+void shade_uniform_batches(const FragmentInputs& in, std::size_t begin, std::size_t end, const Material& material,
+                           const LightArrays& lights, const Vec3& cam_pos, const RadianceOutputs& out) {
+    const MaterialBatch m = {{Batch(material.albedo.r), Batch(material.albedo.g), Batch(material.albedo.b)},
+                             Batch(material.metallic), Batch(material.roughness), Batch(material.ao)};
+    for (std::size_t i = begin; i < end; i += Batch::size) shade_batch_of<false>(in, i, m, lights, cam_pos, out);
 }
 
 // Reinhard c / (c + 1), then c^(1/2.2) as exp(log(c)/2.2); c = 0 gives 0 (log would give -inf).
@@ -315,6 +352,27 @@ void TESSERA_SIMD_ENTRY(shade_fragments_in_range)(const FragmentInputs& in, cons
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
     const std::size_t end = padded_count(in.count);
     for (std::size_t i = 0; i < end; i += Batch::size) shade_batch<true>(in, i, lights, cam, out);
+}
+
+void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,
+                                             const LightArrays& lights, const glm::vec3& cam_pos,
+                                             const RadianceOutputs& out) {
+    const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
+    const std::size_t end = padded_count(in.count);
+    std::size_t i = 0;
+    for (std::size_t r = 0; r < run_count && i < end; ++r) {
+        const MaterialRun& run = runs[r];
+        // The run's last lane, the padding being the last run's; its batches
+        // wholly inside it (from i, the first batch the runs before did not
+        // shade), and then one it shares with the next run, if any.
+        const std::size_t run_end = r + 1 == run_count ? end : run.end;
+        const std::size_t inside_end = run_end / Batch::size * Batch::size;
+        if (run.plain && i >= run.begin && i < inside_end) {
+            shade_uniform_batches(in, i, inside_end, *run.material, lights, cam, out);
+            i = inside_end;
+        }
+        for (; i < run_end; i += Batch::size) shade_batch<false>(in, i, lights, cam, out);
+    }
 }
 
 void TESSERA_SIMD_ENTRY(tonemap_gamma)(std::size_t count, float* r, float* g, float* b) {

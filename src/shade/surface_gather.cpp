@@ -1,5 +1,7 @@
 #include "shade/surface_gather.hpp"
 
+#include <algorithm>
+
 namespace tessera::shade {
 
 void FragmentBuffer::reserve(std::size_t max_fragments) {
@@ -13,6 +15,37 @@ void FragmentBuffer::reserve(std::size_t max_fragments) {
 void FragmentBuffer::pad(std::size_t count) {
     for (auto& c : channels_)
         for (std::size_t i = count; i < padded_count(count); ++i) c[i] = count > 0 ? c[0] : 0.5f;
+}
+
+namespace {
+
+// Fragments [begin, end) get material m in their material channels.
+void fill_material(FragmentBuffer& f, std::size_t begin, std::size_t end, const Material& m) {
+    if (begin < end) f.set_material(begin, end, m);
+}
+
+}  // namespace
+
+void FragmentBuffer::fill_plain_runs(std::span<const MaterialRun> runs, std::size_t count) {
+    bool any = false;
+    for (const MaterialRun& run : runs)
+        if (run.plain) fill_material(*this, run.begin, run.end, *run.material), any = true;
+    if (!any || count == 0) return;
+    for (int c = albedo_r; c <= ao; ++c)  // as pad() fills them
+        std::fill(channels_[c].begin() + count, channels_[c].begin() + padded_count(count), channels_[c][0]);
+}
+
+void FragmentBuffer::fill_plain_run_edges(std::span<const MaterialRun> runs, std::size_t count) {
+    // A batch of any ISA's width (a divisor of kLanePadding, starting at a
+    // multiple of it) lies wholly inside a run or reaches at most this far into it.
+    const auto down = [](std::size_t i) { return i / kLanePadding * kLanePadding; };
+    for (const MaterialRun& run : runs) {
+        if (!run.plain) continue;
+        const std::size_t head_end = std::min<std::size_t>(run.end, down(run.begin + kLanePadding - 1));
+        fill_material(*this, run.begin, head_end, *run.material);
+        // The last run's batches run on into the padding, which counts as its own.
+        if (run.end < count) fill_material(*this, std::max<std::size_t>(head_end, down(run.end)), run.end, *run.material);
+    }
 }
 
 FragmentInputs FragmentBuffer::inputs(std::size_t count) const {

@@ -119,6 +119,13 @@ public:
     // Fills the lanes from count to padded_count(count) with copies of a real
     // fragment, so that the kernels' spare lanes compute sane values.
     void pad(std::size_t count);
+    // The fast gather leaves the material channels of plain runs (MaterialRun::plain)
+    // unfilled: the kernels take such a run's material from the run. These fill
+    // them for the readers of channels: all of them, padding included (AOVs, light
+    // culling, the scalar kernel), or only the lanes a run shares a SIMD batch of
+    // any ISA with another run or with the padding (shade_fragment_runs).
+    void fill_plain_runs(std::span<const MaterialRun> runs, std::size_t count);
+    void fill_plain_run_edges(std::span<const MaterialRun> runs, std::size_t count);
     FragmentInputs inputs(std::size_t count) const;
     RadianceOutputs outputs();
 
@@ -128,13 +135,6 @@ private:
     std::size_t capacity_ = 0;
     std::vector<float> channels_[kChannels];
     TriangleTable triangles_;  // the fast gather's (surface_gather_fast.hpp)
-};
-
-// Fragments [begin, end) of a FragmentBuffer that share one material.
-struct MaterialRun {
-    std::uint32_t begin = 0, end = 0;
-    const Material* material = nullptr;
-    bool textured = false;  // the material has maps: texture coordinates and derivatives were gathered
 };
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`,
@@ -243,8 +243,9 @@ public:
         }
         if (runs_.empty() || runs_.back().material != c_.material) {
             if (!runs_.empty()) runs_.back().end = std::uint32_t(count_);
-            runs_.push_back({std::uint32_t(count_), 0, c_.material, textured_});
+            runs_.push_back({std::uint32_t(count_), 0, c_.material, textured_, true});
         }
+        if (beyond_plain_) runs_.back().plain = false;
         const auto [b1, b2] = raster::perspective_barycentrics(inv_w_, lambda1, lambda2);
         const glm::vec3 world = world0_ + b1 * world_d1_ + b2 * world_d2_;
         out_.set(count_, world, normal0_ + b1 * normal_d1_ + b2 * normal_d2_, *c_.material);

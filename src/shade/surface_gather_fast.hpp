@@ -8,11 +8,15 @@
 //  - given a SplitCornerLookup, a plain triangle's set-up looks up only its
 //    corners and material (the full TriangleCorners only beyond plain): at
 //    720p, with ~1.3 px triangles, there is a set-up per ~2 fragments;
-//  - plain fragments (untextured, no vertex colours, not blended) get their
-//    material's six channels filled per run of one material, not per fragment;
+//  - plain fragments (untextured, no vertex colours, not blended) get no
+//    material channels: a run of them is marked plain (MaterialRun::plain),
+//    and the kernels (shade_fragment_runs) take its material from the run;
+//    FragmentBuffer::fill_plain_runs fills them where channels are read;
 //  - the covered pixels are listed without a branch per pixel;
-//  - WorldPos and Normal are interpolated as 4-float vectors (Float4), the
-//    same IEEE operations per component as the reference's glm;
+//  - fragments go four at a time: their barycentrics as one vector (a
+//    batch's first, in a loop of their own), WorldPos and Normal as 4-float
+//    vectors (Float4) transposed into the channels; the same IEEE operations
+//    per lane and component as the reference's glm;
 //  - the table is probed for a batch of fragments without a branch, then the
 //    batch's new triangles are set up, then its fragments gathered: the
 //    probe's miss (once per triangle of the tile) is no mispredicted branch;
@@ -25,6 +29,9 @@
 #include <cstddef>
 #include <cstring>
 #include <utility>
+
+#include <xmmintrin.h>
+#include <emmintrin.h>
 
 #include "shade/surface_gather.hpp"
 
@@ -68,6 +75,32 @@ inline constexpr std::size_t kWorldPosOffset = offsetof(geometry::ShadedVertex, 
 inline constexpr std::size_t kNormalOffset = offsetof(geometry::ShadedVertex, normal);
 inline constexpr std::size_t kBatch = 64;  // fragments per batch of the fast gather
 
+// For each 4-bit mask, the indices of its set bits packed to the front (the rest 0).
+alignas(16) inline constexpr std::uint32_t kPackedLanes[16][4] = {
+    {0, 0, 0, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {2, 0, 0, 0}, {0, 2, 0, 0}, {1, 2, 0, 0}, {0, 1, 2, 0},
+    {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0}, {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
+// Set bits of each 4-bit mask (x86-64's baseline has no popcnt).
+inline constexpr std::uint8_t kSetBits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+// raster::perspective_barycentrics of four fragments, lane k of triangle t[k]:
+// the same IEEE operations, lane by lane.
+inline std::pair<Float4, Float4> perspective_barycentrics4(const GatheredTriangle* const (&t)[4], const Float4& lambda1,
+                                                           const Float4& lambda2) {
+    __m128 w0 = _mm_load_ps(t[0]->inv_w.lanes.data()), w1 = _mm_load_ps(t[1]->inv_w.lanes.data());
+    __m128 w2 = _mm_load_ps(t[2]->inv_w.lanes.data()), w3 = _mm_load_ps(t[3]->inv_w.lanes.data());
+    _MM_TRANSPOSE4_PS(w0, w1, w2, w3);  // w0, w1, w2: 1/w of corners 0, 1, 2 of the four triangles
+    const Float4 q0 = (1.0f - lambda1 - lambda2) * Float4(w0), q1 = lambda1 * Float4(w1), q2 = lambda2 * Float4(w2);
+    const Float4 inv_sum = 1.0f / (q0 + q1 + q2);
+    return {q1 * inv_sum, q2 * inv_sum};
+}
+
+// Four (x, y, z, ·) vectors into x[0..3], y[0..3], z[0..3].
+inline void store_transposed(const Float4 (&v)[4], float* x, float* y, float* z) {
+    __m128 r0 = __m128(v[0]), r1 = __m128(v[1]), r2 = __m128(v[2]), r3 = __m128(v[3]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    _mm_storeu_ps(x, r0), _mm_storeu_ps(y, r1), _mm_storeu_ps(z, r2);
+}
+
 // The fast gather's state between fragments; the loop over fragments
 // (gather_fragments) keeps its own in locals, and calls out of line only at a
 // triangle the tile has not met yet, a change of material, and extras.
@@ -99,6 +132,7 @@ public:
         const GatheredTriangle* const entries = table_.entry.data();
         const Material* run_material = nullptr;
         std::size_t entry_count = 0;
+        alignas(16) float batch_b1[kBatch], batch_b2[kBatch];  // perspective barycentrics of a batch's fours
         // In batches, each in three loops, so that no branch depends on whether
         // a fragment's triangle is new (at 720p that was one miss per ~2 fragments):
         // which fragments meet a new triangle, without a branch; the new
@@ -120,14 +154,55 @@ public:
                 entry_count += std::size_t(is_new);
             }
             for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
-            for (std::size_t i = begin; i < end; ++i) {
+            // Four fragments at a time: first the batch's barycentrics as
+            // vectors (the reference's operations lane by lane), in a loop of
+            // its own so that the divisions of several fours overlap; then
+            // their WorldPos and Normal as 4-float vectors each, transposed
+            // into the channels.
+            const std::size_t fours_end = begin + (end - begin) / 4 * 4;
+            for (std::size_t i = begin; i < fours_end; i += 4) {
+                const GatheredTriangle* const t[4] = {&entries[entry_of_fragment[i]], &entries[entry_of_fragment[i + 1]],
+                                                      &entries[entry_of_fragment[i + 2]],
+                                                      &entries[entry_of_fragment[i + 3]]};
+                const Float4 lambda1 = {lambda1_of(i), lambda1_of(i + 1), lambda1_of(i + 2), lambda1_of(i + 3)};
+                const Float4 lambda2 = {lambda2_of(i), lambda2_of(i + 1), lambda2_of(i + 2), lambda2_of(i + 3)};
+                const auto [b1, b2] = perspective_barycentrics4(t, lambda1, lambda2);
+                std::memcpy(&batch_b1[i - begin], &b1, sizeof b1);
+                std::memcpy(&batch_b2[i - begin], &b2, sizeof b2);
+            }
+            std::size_t i = begin;
+            for (; i < fours_end; i += 4) {
+                const std::uint32_t entry[4] = {entry_of_fragment[i], entry_of_fragment[i + 1],
+                                                entry_of_fragment[i + 2], entry_of_fragment[i + 3]};
+                const GatheredTriangle* const t[4] = {&entries[entry[0]], &entries[entry[1]], &entries[entry[2]],
+                                                      &entries[entry[3]]};
+                Float4 b1, b2;
+                std::memcpy(&b1, &batch_b1[i - begin], sizeof b1);
+                std::memcpy(&b2, &batch_b2[i - begin], sizeof b2);
+                Float4 world[4], normal[4];
+                for (int k = 0; k < 4; ++k) {
+                    // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
+                    world[k] = t[k]->world0 + b1[k] * t[k]->world_d1 + b2[k] * t[k]->world_d2;
+                    normal[k] = t[k]->normal0 + b1[k] * t[k]->normal_d1 + b2[k] * t[k]->normal_d2;
+                }
+                store_transposed(world, world_x + i, world_y + i, world_z + i);
+                store_transposed(normal, normal_x + i, normal_y + i, normal_z + i);
+                for (int k = 0; k < 4; ++k) {
+                    if (t[k]->material != run_material) [[unlikely]]
+                        run_material = start_run(*t[k], i + k);
+                    if (t[k]->beyond_plain) [[unlikely]] {
+                        const auto [x, y] = xy_of(i + k);
+                        add_extras_at(i + k, entry[k], x, y, lambda1_of(i + k), lambda2_of(i + k), b1[k], b2[k]);
+                    }
+                }
+            }
+            for (; i < end; ++i) {
                 const float lambda1 = lambda1_of(i), lambda2 = lambda2_of(i);
                 const std::size_t entry = entry_of_fragment[i];
                 const GatheredTriangle& t = entries[entry];
                 if (t.material != run_material) [[unlikely]]
                     run_material = start_run(t, i);
                 const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1, lambda2);
-                // As the reference's glm: (corner 0 + b1·d1) + b2·d2, per component.
                 const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
                 const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
                 world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
@@ -138,10 +213,7 @@ public:
                 }
             }
         }
-        if (!runs_.empty()) {
-            runs_.back().end = std::uint32_t(count);
-            out_.set_material(material_filled_, count, *runs_.back().material);
-        }
+        if (!runs_.empty()) end_run(count);
         out_.pad(count);
         return count;
     }
@@ -201,22 +273,29 @@ private:
         e.uv_d1 = c.corner[1]->uv - e.uv0, e.uv_d2 = c.corner[2]->uv - e.uv0;
     }
 
-    // A run of material t.material begins at fragment i; the last run's plain
-    // fragments get their material. Returns the new run's material.
+    // The last run ends before fragment i. A plain run's material channels stay
+    // unfilled (the kernels take its material from the run); in a run that is
+    // not, the plain fragments after the last beyond-plain one get theirs.
+    void end_run(std::size_t i) {
+        MaterialRun& run = runs_.back();
+        run.end = std::uint32_t(i);
+        if (!run.plain) out_.set_material(material_filled_, i, *run.material);
+    }
+
+    // A run of material t.material begins at fragment i. Returns its material.
     [[gnu::noinline]] const Material* start_run(const GatheredTriangle& t, std::size_t i) {
-        if (!runs_.empty()) {
-            runs_.back().end = std::uint32_t(i);
-            out_.set_material(material_filled_, i, *runs_.back().material);
-        }
+        if (!runs_.empty()) end_run(i);
         material_filled_ = i;
-        runs_.push_back({std::uint32_t(i), 0, t.material, t.textured});
+        runs_.push_back({std::uint32_t(i), 0, t.material, t.textured, true});
         return t.material;
     }
 
-    // Fragment i is textured, vertex-coloured or blended: its material
-    // channels now (the colours multiply them), then the reference's extras.
+    // Fragment i is textured, vertex-coloured or blended: its run is not plain;
+    // its material channels now, and those of the run's fragments before it
+    // (the colours multiply them), then the reference's extras.
     [[gnu::noinline]] void add_extras_at(std::size_t i, std::size_t entry, int x, int y, float lambda1, float lambda2,
                                          float b1, float b2) {
+        runs_.back().plain = false;
         out_.set_material(material_filled_, i + 1, *runs_.back().material);
         material_filled_ = i + 1;
         const GatheredTriangle& t = table_.entry[entry];
@@ -242,12 +321,25 @@ template <class Lookup>
 std::size_t gather_surface_points(Isa isa, const raster::TileBuffers& tile, int width, int height, Lookup&& lookup,
                                   FragmentBuffer& out, std::vector<MaterialRun>& runs) {
     if (isa == Isa::scalar) return gather_surface_points(tile, width, height, lookup, out, runs);
-    // The covered pixels, in the reference's order, without a branch per pixel.
+    // The covered pixels, in the reference's order, without a branch per pixel:
+    // four at a time (SSE2, every x86-64), each four's covered ones packed to
+    // the front by a table on the compare's mask and stored as one vector (the
+    // spare lanes land where the next four go, within the tile's pixel count).
     std::uint32_t* const pixels = out.triangle_table().pixels.data();
     std::size_t count = 0;
+    const float* const depth = tile.depth.data();
     for (int y = 0; y < height; ++y) {
         const std::uint32_t row = std::uint32_t(y * tile.side);
-        for (int x = 0; x < width; ++x) {
+        int x = 0;
+        for (; x + 4 <= width; x += 4) {
+            // covered(p) is depth < 1, false for NaN, as the ordered compare here.
+            const int mask = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(depth + row + x), _mm_set1_ps(1.0f)));
+            const __m128i offsets = _mm_load_si128(reinterpret_cast<const __m128i*>(detail::kPackedLanes[mask]));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(pixels + count),
+                             _mm_add_epi32(offsets, _mm_set1_epi32(int(row) + x)));
+            count += detail::kSetBits[mask];
+        }
+        for (; x < width; ++x) {
             pixels[count] = row + std::uint32_t(x);
             count += tile.covered(row + x) ? 1 : 0;
         }

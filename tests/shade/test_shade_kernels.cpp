@@ -14,6 +14,7 @@
 
 #include "shade/pbr_reference.hpp"
 #include "shade/shade_kernels.hpp"
+#include "shade/surface_gather.hpp"
 
 namespace {
 
@@ -367,6 +368,78 @@ TEST_CASE("SIMD shader matches the scalar reference on random fragments") {
         CHECK(failures == 0);
         CHECK(sentinel_failures == 0);
     }
+}
+
+// shade_fragment_runs as the renderer calls it after the fast gather: the
+// material channels of plain runs hold garbage (NaN) except where
+// fill_plain_run_edges fills them; the result must be shade_fragments' with
+// every channel filled, bit for bit, for every ISA.
+TEST_CASE("shade_fragment_runs takes plain runs' material from the run, with shade_fragments' bits") {
+    std::mt19937 rng(1311);
+    const std::vector<std::size_t> sizes = scene_sizes(rng, 40000);
+    std::vector<Material> materials(5);
+    for (Material& m : materials)
+        m = {.albedo = uniform3(rng, 0.0f, 1.0f), .metallic = uniform(rng, 0.0f, 1.0f),
+             .roughness = uniform(rng, 0.05f, 1.0f), .ao = uniform(rng, 0.0f, 1.0f)};
+    std::size_t uniform_fragments = 0, checked = 0;
+    for (const std::size_t count : sizes) {
+        RandomScene scene = random_scene(rng, count);
+        Fragments& f = scene.fragments;
+        // Runs of 1 to 40 fragments (some up to 300), most of them plain.
+        std::vector<MaterialRun> runs;
+        for (std::uint32_t begin = 0; begin < count;) {
+            const std::uint32_t most = rng() % 4 == 0 ? 300 : 40;
+            const std::uint32_t end = std::min<std::uint32_t>(std::uint32_t(count), begin + 1 + rng() % most);
+            MaterialRun run{begin, end, &materials[rng() % materials.size()], false, rng() % 10 < 7};
+            if (!runs.empty() && runs.back().material == run.material) run.material = &materials[(run.material - materials.data() + 1) % materials.size()];
+            if (run.plain)
+                for (std::uint32_t i = begin; i < end; ++i) {
+                    f.albedo_r[i] = run.material->albedo.r, f.albedo_g[i] = run.material->albedo.g;
+                    f.albedo_b[i] = run.material->albedo.b, f.metallic[i] = run.material->metallic;
+                    f.roughness[i] = run.material->roughness, f.ao[i] = run.material->ao;
+                }
+            runs.push_back(run);
+            begin = end;
+        }
+        FragmentBuffer buffer;
+        buffer.reserve(count);
+        const float* const full[] = {f.world_x.data(),  f.world_y.data(),  f.world_z.data(),  f.normal_x.data(),
+                                     f.normal_y.data(), f.normal_z.data(), f.albedo_r.data(), f.albedo_g.data(),
+                                     f.albedo_b.data(), f.metallic.data(), f.roughness.data(), f.ao.data()};
+        for (int c = 0; c <= FragmentBuffer::ao; ++c)
+            std::copy_n(full[c], padded_count(count), buffer.channel(FragmentBuffer::Channel(c)));
+        for (const MaterialRun& run : runs) {
+            if (!run.plain) continue;
+            uniform_fragments += run.end - run.begin;
+            for (int c = FragmentBuffer::albedo_r; c <= FragmentBuffer::ao; ++c)
+                std::fill(buffer.channel(FragmentBuffer::Channel(c)) + run.begin,
+                          buffer.channel(FragmentBuffer::Channel(c)) + run.end, NAN);
+        }
+        for (int c = FragmentBuffer::albedo_r; c <= FragmentBuffer::ao; ++c)  // the padding too
+            std::fill(buffer.channel(FragmentBuffer::Channel(c)) + count,
+                      buffer.channel(FragmentBuffer::Channel(c)) + padded_count(count), NAN);
+        ShadingLights lights;
+        lights.assign(scene.cam_pos, scene.lights);
+        for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
+            if (!isa_supported(isa)) continue;
+            CAPTURE(isa_name(isa));
+            CAPTURE(count);
+            const Radiance expected = shade_scene(isa, scene);
+            FragmentBuffer sparse = buffer;
+            if (isa == Isa::scalar) sparse.fill_plain_runs(runs, count);
+            else sparse.fill_plain_run_edges(runs, count);
+            Radiance out(count);
+            shade_fragment_runs(isa, sparse.inputs(count), runs, lights, out.outputs());
+            std::size_t differing = 0;
+            for (std::size_t i = 0; i < count; ++i)
+                for (int c = 0; c < 3; ++c) differing += !same_bits(out.channel(c, i), expected.channel(c, i));
+            CHECK(differing == 0);
+            CHECK(out.sentinels_intact());
+            checked += count;
+        }
+    }
+    MESSAGE(checked, " fragments checked, ", uniform_fragments, " per ISA in plain runs");
+    CHECK(uniform_fragments > 10000);
 }
 
 TEST_CASE("SIMD tonemap_gamma matches display_from_radiance") {

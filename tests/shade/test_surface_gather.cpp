@@ -135,17 +135,27 @@ void fill_unwritten(FragmentBuffer& buffer) {
     }
 }
 
-// Same count, same runs, every channel of every lane up to the padded count equal bit for bit.
+// Same count, same runs, every channel of every lane up to the padded count
+// equal bit for bit, once the fast gather's plain runs have their material
+// channels (which it leaves unwritten) filled.
 void check_same_fragments(std::size_t count, const FragmentBuffer& reference, const std::vector<MaterialRun>& reference_runs,
-                          std::size_t fast_count, const FragmentBuffer& fast, const std::vector<MaterialRun>& fast_runs) {
+                          std::size_t fast_count, FragmentBuffer& fast, const std::vector<MaterialRun>& fast_runs) {
     REQUIRE(fast_count == count);
     REQUIRE(fast_runs.size() == reference_runs.size());
+    std::size_t plain_fragments = 0, plain_written = 0;
     for (std::size_t r = 0; r < reference_runs.size(); ++r) {
         CHECK(fast_runs[r].begin == reference_runs[r].begin);
         CHECK(fast_runs[r].end == reference_runs[r].end);
         CHECK(fast_runs[r].material == reference_runs[r].material);
         CHECK(fast_runs[r].textured == reference_runs[r].textured);
+        CHECK(fast_runs[r].plain == reference_runs[r].plain);
+        if (!fast_runs[r].plain) continue;
+        for (std::uint32_t i = fast_runs[r].begin; i < fast_runs[r].end; ++i, ++plain_fragments)
+            for (int c = FragmentBuffer::albedo_r; c <= FragmentBuffer::ao; ++c)
+                plain_written += fast.channel(FragmentBuffer::Channel(c))[i] != kUnwritten;
     }
+    CHECK(plain_written == 0);
+    fast.fill_plain_runs(fast_runs, fast_count);
     std::size_t differing = 0;
     for (int c = 0; c < FragmentBuffer::kChannels; ++c) {
         const float* a = reference.channel(FragmentBuffer::Channel(c));
