@@ -17,6 +17,32 @@ bool same(const raster::RasterTriangle& a, const raster::RasterTriangle& b) {
            std::memcmp(a.depth.data(), b.depth.data(), sizeof(a.depth)) == 0 && a.vertex == b.vertex;
 }
 
+// For each SIMD ISA this CPU runs: `assemble(isa, out)` must give `reference`'s
+// records, bit for bit and in order; then `also(assembled)` checks the rest.
+template <class Assemble, class Also>
+void check_every_simd_isa(const raster::AssembledTriangles& reference, Assemble&& assemble, Also&& also) {
+    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+        CAPTURE(simd::isa_name(isa));
+        if (!simd::isa_supported(isa)) {
+            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+            continue;
+        }
+        raster::AssembledTriangles assembled;
+        assemble(isa, assembled);
+        REQUIRE(assembled.triangles.size() == reference.triangles.size());
+        int different = 0;
+        for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
+            different += !same(assembled.triangles[i], reference.triangles[i]);
+        CHECK(different == 0);
+        also(assembled);
+    }
+}
+
+template <class Assemble>
+void check_every_simd_isa(const raster::AssembledTriangles& reference, Assemble&& assemble) {
+    check_every_simd_isa(reference, assemble, [](const raster::AssembledTriangles&) {});
+}
+
 }  // namespace
 
 // The setup kernels decide, a vector of triangles at a time, what the scalar
@@ -51,20 +77,9 @@ TEST_CASE("assembling triangles with every ISA's setup kernel gives the scalar r
     REQUIRE(reference.triangles.size() > 5000);
     REQUIRE(reference.triangles.size() < 20000);  // some were dropped
 
-    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
-        CAPTURE(simd::isa_name(isa));
-        if (!simd::isa_supported(isa)) {
-            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
-            continue;
-        }
-        raster::AssembledTriangles assembled;
+    check_every_simd_isa(reference, [&](simd::Isa isa, raster::AssembledTriangles& assembled) {
         raster::assemble_triangles(isa, indices, 0, std::uint32_t(screen.size()), frame, viewport, guard, assembled);
-        REQUIRE(assembled.triangles.size() == reference.triangles.size());
-        int different = 0;
-        for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
-            different += !same(assembled.triangles[i], reference.triangles[i]);
-        CHECK(different == 0);
-    }
+    });
 }
 
 // The whole of assembly through the kernels: index checks, the outcode test
@@ -133,28 +148,21 @@ TEST_CASE("assembly through every ISA's kernel equals the scalar path: clipping,
                 clipped += (t.vertex[0] | t.vertex[1] | t.vertex[2]) >= geometry::kClippedVertexBit;
             REQUIRE(reference.triangles.size() > 1000);
             REQUIRE(clipped > 50);  // clipped pieces sit between the kernel's triangles
-            for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
-                CAPTURE(simd::isa_name(isa));
-                if (!simd::isa_supported(isa)) {
-                    MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
-                    continue;
-                }
-                raster::AssembledTriangles assembled;
-                // Two runs, one of them cut into pieces that end off a batch boundary.
-                raster::assemble_triangles(isa, std::span(indices).first(3 * 1001), kFirstVertex, vertex_count, frame,
-                                           viewport, guard, assembled, samples, culling, colors);
-                raster::assemble_triangles(isa, std::span(indices).subspan(3 * 1001), kFirstVertex, vertex_count,
-                                           frame, viewport, guard, assembled, samples, culling, colors);
-                REQUIRE(assembled.triangles.size() == reference.triangles.size());
-                int different = 0;
-                for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
-                    different += !same(assembled.triangles[i], reference.triangles[i]);
-                CHECK(different == 0);
-                REQUIRE(assembled.clipped_vertices.size() == reference.clipped_vertices.size());
-                CHECK(std::memcmp(assembled.clipped_vertices.data(), reference.clipped_vertices.data(),
-                                  assembled.clipped_vertices.size() * sizeof(geometry::ShadedVertex)) == 0);
-                CHECK(assembled.clipped_colors == reference.clipped_colors);
-            }
+            check_every_simd_isa(
+                reference,
+                [&](simd::Isa isa, raster::AssembledTriangles& assembled) {
+                    // Two runs, one of them cut into pieces that end off a batch boundary.
+                    raster::assemble_triangles(isa, std::span(indices).first(3 * 1001), kFirstVertex, vertex_count,
+                                               frame, viewport, guard, assembled, samples, culling, colors);
+                    raster::assemble_triangles(isa, std::span(indices).subspan(3 * 1001), kFirstVertex, vertex_count,
+                                               frame, viewport, guard, assembled, samples, culling, colors);
+                },
+                [&](const raster::AssembledTriangles& assembled) {
+                    REQUIRE(assembled.clipped_vertices.size() == reference.clipped_vertices.size());
+                    CHECK(std::memcmp(assembled.clipped_vertices.data(), reference.clipped_vertices.data(),
+                                      assembled.clipped_vertices.size() * sizeof(geometry::ShadedVertex)) == 0);
+                    CHECK(assembled.clipped_colors == reference.clipped_colors);
+                });
         }
 }
 
@@ -200,19 +208,8 @@ TEST_CASE("assembly keeps exactly the kept lanes' records, in order, for any pat
     std::size_t kept = 4;
     for (const std::uint64_t pattern : patterns) kept += std::size_t(std::popcount(pattern));
     REQUIRE(reference.triangles.size() == kept);  // the pattern decides, as meant
-    for (simd::Isa isa : {simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
-        CAPTURE(simd::isa_name(isa));
-        if (!simd::isa_supported(isa)) {
-            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
-            continue;
-        }
-        raster::AssembledTriangles assembled;
+    check_every_simd_isa(reference, [&](simd::Isa isa, raster::AssembledTriangles& assembled) {
         raster::assemble_triangles(isa, first_indices, 0, count, frame, viewport, guard, assembled);
         raster::assemble_triangles(isa, indices, 0, count, frame, viewport, guard, assembled);
-        REQUIRE(assembled.triangles.size() == reference.triangles.size());
-        int different = 0;
-        for (std::size_t i = 0; i < assembled.triangles.size(); ++i)
-            different += !same(assembled.triangles[i], reference.triangles[i]);
-        CHECK(different == 0);
-    }
+    });
 }
