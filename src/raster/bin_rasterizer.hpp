@@ -25,6 +25,8 @@ struct DrawnCallback {
 // Rasterizes the triangles records[bin[i]] (ids id_base | bin[i]) into the
 // tile in bin order, exactly as rasterize_triangle(isa, ...) of each in turn
 // (bit-identical buffers and counters for every ISA, scalar included).
+// `counters` are brought up to date when the call returns (the kernels count
+// in registers), not at each `drawn` call.
 void rasterize_bin(simd::Isa isa, const RasterTriangle* records, std::span<const std::uint32_t> bin,
                    std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters,
                    DrawnCallback drawn = {});
