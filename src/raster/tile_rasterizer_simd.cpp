@@ -356,13 +356,15 @@ void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32
 
 void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
                                        std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers,
-                                       const TileView& view, RasterCounters& counters, DrawnCallback drawn) {
+                                       const TileView& view, RasterCounters& counters, DrawnCallback drawn,
+                                       const CornerPrefetch& prefetch) {
     // Copies the compiler may keep in registers: the vector stores into the
     // tile (may_alias types) could otherwise change them, as far as it knows,
     // so they were read back from memory for every triangle and stamp row.
     const TileView local_view = view;
     const TileRect local_tile = tile;
     RasterCounters local_counters = counters;
+    const CornerPrefetch local_prefetch = prefetch;
     for (std::size_t i = 0; i < count; ++i) {
         // A tile's triangles lie scattered through the chunk: fetch ahead
         // (records are one aligned cache line each).
@@ -371,7 +373,10 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
         const RasterTriangle& t = records[bin[i]];
         const std::uint64_t passed = local_counters.depth_passed;
         rasterize_one(t, id_base | bin[i], local_tile, buffers, local_view, local_counters);
-        if (local_counters.depth_passed != passed && drawn.call) drawn.call(drawn.context, bin[i]);
+        if (local_counters.depth_passed != passed) {
+            if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+            if (drawn.call) drawn.call(drawn.context, bin[i]);
+        }
     }
     counters = local_counters;
 }
