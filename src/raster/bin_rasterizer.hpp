@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "geometry/shaded_vertex.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster/tile_rasterizer.hpp"
 
@@ -22,17 +23,47 @@ struct DrawnCallback {
     void* context = nullptr;
 };
 
+// What the renderer's callback did, done by the kernel itself (no call per
+// drawn triangle): for each drawn triangle, a prefetch of its three corners'
+// vertices, each `stride` bytes at vertices + ref · stride, or at
+// clipped_vertices + (ref without geometry::kClippedVertexBit) · stride where
+// the reference has that bit. Both ends of each vertex are fetched, as a
+// vertex may straddle two cache lines. A hint only: the buffers do not change.
+struct CornerPrefetch {
+    const std::byte* vertices = nullptr;  // null: no prefetch
+    const std::byte* clipped_vertices = nullptr;
+    std::size_t stride = 0;
+};
+
 // Rasterizes the triangles records[bin[i]] (ids id_base | bin[i]) into the
 // tile in bin order, exactly as rasterize_triangle(isa, ...) of each in turn
 // (bit-identical buffers and counters for every ISA, scalar included).
+// `counters` are brought up to date when the call returns (the kernels count
+// in registers), not at each `drawn` call.
 void rasterize_bin(simd::Isa isa, const RasterTriangle* records, std::span<const std::uint32_t> bin,
                    std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers, RasterCounters& counters,
-                   DrawnCallback drawn = {});
+                   DrawnCallback drawn = {}, CornerPrefetch prefetch = {});
+
+// Where CornerPrefetch finds the vertex of a corner reference.
+[[gnu::always_inline]] inline const std::byte* corner_vertex(const CornerPrefetch& prefetch, std::uint32_t ref) {
+    const std::byte* base = (ref & geometry::kClippedVertexBit) ? prefetch.clipped_vertices : prefetch.vertices;
+    return base + std::size_t(ref & ~geometry::kClippedVertexBit) * prefetch.stride;
+}
+
+// CornerPrefetch's prefetches of one triangle.
+[[gnu::always_inline]] inline void prefetch_corners(const RasterTriangle& t, const CornerPrefetch& prefetch) {
+    for (int k = 0; k < 3; ++k) {
+        const std::byte* v = corner_vertex(prefetch, t.vertex[k]);
+        __builtin_prefetch(v);
+        __builtin_prefetch(v + prefetch.stride - 1);
+    }
+}
 
 #define TESSERA_DECLARE_BIN_KERNEL(suffix) \
     void rasterize_bin_##suffix(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count, \
                                 std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers, \
-                                const TileView& view, RasterCounters& counters, DrawnCallback drawn);
+                                const TileView& view, RasterCounters& counters, DrawnCallback drawn, \
+                                const CornerPrefetch& prefetch);
 TESSERA_DECLARE_BIN_KERNEL(sse4)
 TESSERA_DECLARE_BIN_KERNEL(avx2)
 TESSERA_DECLARE_BIN_KERNEL(avx512)

@@ -279,9 +279,12 @@ template <int kWidth>
     edges.e[k] = dx * (y - ay) - dy * (x - ax);
     edges.across[k] = dy * Int(-S::kLanes * 256);
     edges.down[k] = dx * Int(S::kRows * 256);
-    // Top-left rule (EdgeStepper): a top edge (horizontal, interior below) or a left edge.
-    const auto top_left = (dy < Int(0)) | ((dy == Int(0)) & (dx > Int(0)));
-    edges.threshold[k] = xsimd::select(top_left, Int(-1), Int(0));
+    // Top-left rule (EdgeStepper): a top edge (horizontal, interior below) or
+    // a left edge, dy < 0 or (dy == 0 and dx > 0), has threshold -1: the sign
+    // of dy · 2^13 - dx, as |dx| < kTinySpan <= 2^12 (and dx != 0 where dy ==
+    // 0: set-up triangles have area). Three operations instead of seven.
+    static_assert(kTinySpan <= (1 << 12));
+    edges.threshold[k] = ((dy << 13) - dx) >> 31;
 }
 
 template <int kWidth>
@@ -353,17 +356,29 @@ void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32
 
 void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
                                        std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers,
-                                       const TileView& view, RasterCounters& counters, DrawnCallback drawn) {
+                                       const TileView& view, RasterCounters& counters, DrawnCallback drawn,
+                                       const CornerPrefetch& prefetch) {
+    // Copies the compiler may keep in registers: the vector stores into the
+    // tile (may_alias types) could otherwise change them, as far as it knows,
+    // so they were read back from memory for every triangle and stamp row.
+    const TileView local_view = view;
+    const TileRect local_tile = tile;
+    RasterCounters local_counters = counters;
+    const CornerPrefetch local_prefetch = prefetch;
     for (std::size_t i = 0; i < count; ++i) {
         // A tile's triangles lie scattered through the chunk: fetch ahead
         // (records are one aligned cache line each).
         constexpr std::size_t kPrefetchDistance = 8;
         if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
         const RasterTriangle& t = records[bin[i]];
-        const std::uint64_t passed = counters.depth_passed;
-        rasterize_one(t, id_base | bin[i], tile, buffers, view, counters);
-        if (counters.depth_passed != passed && drawn.call) drawn.call(drawn.context, bin[i]);
+        const std::uint64_t passed = local_counters.depth_passed;
+        rasterize_one(t, id_base | bin[i], local_tile, buffers, local_view, local_counters);
+        if (local_counters.depth_passed != passed) {
+            if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+            if (drawn.call) drawn.call(drawn.context, bin[i]);
+        }
     }
+    counters = local_counters;
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_stamp)(const EdgeBlock32& block, const TileView& tile, RasterCounters& counters) {

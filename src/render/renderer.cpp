@@ -545,16 +545,13 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
 [[gnu::noinline]] void Renderer::Frame::rasterize_bin(const render::Chunk& chunk, std::span<const std::uint32_t> bin,
                                                       std::uint32_t id_base, const raster::TileRect& rect,
                                                       WorkerScratch& s) const {
-    struct Context {
-        const Frame* frame;
-        const render::Chunk* chunk;
-    } context{this, &chunk};
-    const auto prefetch = [](void* c, std::uint32_t entry) {
-        const Context& context = *static_cast<const Context*>(c);
-        context.frame->prefetch_corners(*context.chunk, context.chunk->assembled.triangles[entry]);
-    };
-    raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, id_base, rect, s.raster, s.counters,
-                          raster::DrawnCallback{prefetch, &context});
+    // prefetch_corners() done by the kernel: the corners' vertices are those of
+    // the frame, or of the chunk's clipping (Chunk::vertex).
+    const raster::CornerPrefetch prefetch{reinterpret_cast<const std::byte*>(vertices.data()),
+                                          reinterpret_cast<const std::byte*>(chunk.assembled.clipped_vertices.data()),
+                                          sizeof(geometry::ShadedVertex)};
+    raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, id_base, rect, s.raster, s.counters, {},
+                          prefetch);
 }
 
 void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {

@@ -18,6 +18,12 @@ struct BinResult {
     std::vector<std::uint32_t> drawn;  // bin entries reported as having passed the depth test, in order
 };
 
+// The vertices the records' corner references (0, 1, 2) name, for the kernels' corner prefetch.
+const std::vector<geometry::ShadedVertex> kFrameVertices(3), kClippedVertices(1);
+const raster::CornerPrefetch kPrefetch{reinterpret_cast<const std::byte*>(kFrameVertices.data()),
+                                       reinterpret_cast<const std::byte*>(kClippedVertices.data()),
+                                       sizeof(geometry::ShadedVertex)};
+
 // The reference: the scalar loop, one triangle at a time in bin order; a
 // triangle is drawn when the depth-passed count moved.
 BinResult scalar_one_by_one(const std::vector<raster::RasterTriangle>& records, const std::vector<std::uint32_t>& bin,
@@ -42,7 +48,8 @@ BinResult whole_bin(simd::Isa isa, const std::vector<raster::RasterTriangle>& re
                                     static_cast<std::vector<std::uint32_t>*>(context)->push_back(entry);
                                 },
                                 &r.drawn};
-    raster::rasterize_bin(isa, records.data(), bin, id_base, tile, r.buffers, r.counters, drawn);
+    // With the corner prefetch the renderer asks for: a hint that must change nothing.
+    raster::rasterize_bin(isa, records.data(), bin, id_base, tile, r.buffers, r.counters, drawn, kPrefetch);
     return r;
 }
 
@@ -158,6 +165,18 @@ TEST_CASE("a bin of the jittered shared-edge mesh with a second layer crossing i
         for (std::uint32_t i = 0; i < bin.size(); ++i) bin[i] = i;
         check_every_isa(records, bin, 0, {32, 32, 32 + kTile, 32 + kTile});
     }
+}
+
+TEST_CASE("the corner prefetch finds a reference's vertex in the frame's vertices or the clipped ones") {
+    const std::vector<geometry::ShadedVertex> frame(10), clipped(4);
+    const raster::CornerPrefetch prefetch{reinterpret_cast<const std::byte*>(frame.data()),
+                                          reinterpret_cast<const std::byte*>(clipped.data()),
+                                          sizeof(geometry::ShadedVertex)};
+    for (std::uint32_t i = 0; i < frame.size(); ++i)
+        CHECK(raster::corner_vertex(prefetch, i) == reinterpret_cast<const std::byte*>(&frame[i]));
+    for (std::uint32_t i = 0; i < clipped.size(); ++i)
+        CHECK(raster::corner_vertex(prefetch, geometry::kClippedVertexBit | i) ==
+              reinterpret_cast<const std::byte*>(&clipped[i]));
 }
 
 TEST_CASE("an empty bin draws nothing") {
