@@ -256,17 +256,13 @@ struct Renderer::Frame {
     }
     void describe_for_textures(const raster::RasterTriangle& t, const Mesh& mesh, shade::TriangleCorners& corners) const;
     // A triangle that has just won a depth test will likely be gathered: its
-    // corners are fetched now, while the rest of the tile rasterizes, instead
-    // of stalling the gather (they lie scattered through the frame's vertices).
-    // In inline assembly: in a function that does nothing else (rasterize_bin's
-    // callback), g++ 12 dropped __builtin_prefetch and compiled it to a bare ret.
-    void prefetch_corners(const render::Chunk& chunk, const raster::RasterTriangle& t) const {
-        for (int k = 0; k < 3; ++k) {
-            // A 48-byte vertex straddles two cache lines at half the 16-byte offsets: fetch both.
-            const char* v = reinterpret_cast<const char*>(&chunk.vertex(t.vertex[k], vertices));
-            asm volatile("prefetcht0 %0" : : "m"(*v));
-            asm volatile("prefetcht0 %0" : : "m"(v[sizeof(geometry::ShadedVertex) - 1]));
-        }
+    // corners are fetched then, while the rest of the tile rasterizes, instead
+    // of stalling the gather (they lie scattered through the frame's vertices,
+    // or the chunk's clipped ones: Chunk::vertex).
+    raster::CornerPrefetch corner_prefetch(const render::Chunk& chunk) const {
+        return {reinterpret_cast<const std::byte*>(vertices.data()),
+                reinterpret_cast<const std::byte*>(chunk.assembled.clipped_vertices.data()),
+                sizeof(geometry::ShadedVertex)};
     }
 };
 
@@ -520,19 +516,17 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
                 continue;
             }
         }
+        const raster::CornerPrefetch prefetch = corner_prefetch(chunk);
         for (std::size_t i = 0; i < bin.size(); ++i) {
             if (!is_reset) reset(), is_reset = true;
-            // A tile's triangles lie scattered through the chunk: fetch ahead.
+            // A tile's triangles lie scattered through the chunk: fetch ahead
+            // (records are one aligned cache line each).
             constexpr std::size_t kPrefetchDistance = 8;
-            if (i + kPrefetchDistance < bin.size()) {
-                const char* ahead = reinterpret_cast<const char*>(&chunk.assembled.triangles[bin[i + kPrefetchDistance]]);
-                __builtin_prefetch(ahead);
-                __builtin_prefetch(ahead + 63);  // a record may straddle two cache lines
-            }
+            if (i + kPrefetchDistance < bin.size()) __builtin_prefetch(&chunk.assembled.triangles[bin[i + kPrefetchDistance]]);
             const raster::RasterTriangle& t = chunk.assembled.triangles[bin[i]];
             const std::uint64_t passed = s.counters.depth_passed;
             rasterize(t, (std::uint32_t(c) << render::kChunkIdShift) | bin[i], chunk.alpha_tested);
-            if (s.counters.depth_passed != passed) prefetch_corners(chunk, t);
+            if (s.counters.depth_passed != passed) raster::prefetch_corners(t, prefetch);
         }
     }
     return s.counters.depth_passed != passed_before;
@@ -545,13 +539,8 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
 [[gnu::noinline]] void Renderer::Frame::rasterize_bin(const render::Chunk& chunk, std::span<const std::uint32_t> bin,
                                                       std::uint32_t id_base, const raster::TileRect& rect,
                                                       WorkerScratch& s) const {
-    // prefetch_corners() done by the kernel: the corners' vertices are those of
-    // the frame, or of the chunk's clipping (Chunk::vertex).
-    const raster::CornerPrefetch prefetch{reinterpret_cast<const std::byte*>(vertices.data()),
-                                          reinterpret_cast<const std::byte*>(chunk.assembled.clipped_vertices.data()),
-                                          sizeof(geometry::ShadedVertex)};
     raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, id_base, rect, s.raster, s.counters, {},
-                          prefetch);
+                          corner_prefetch(chunk));
 }
 
 void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
