@@ -16,8 +16,9 @@
 namespace tessera::raster {
 
 // Called for each triangle of a bin that passed the depth test somewhere,
-// with its bin entry, right after it is drawn: the renderer prefetches what
-// shading the triangle will need.
+// with its bin entry, right after it is drawn (and its corners prefetched):
+// the tests see through it which triangles the kernels count as drawn. The
+// renderer passes none; the corner prefetch below is the kernels' own.
 struct DrawnCallback {
     void (*call)(void* context, std::uint32_t entry) = nullptr;
     void* context = nullptr;

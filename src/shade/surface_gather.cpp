@@ -17,19 +17,10 @@ void FragmentBuffer::pad(std::size_t count) {
         for (std::size_t i = count; i < padded_count(count); ++i) c[i] = count > 0 ? c[0] : 0.5f;
 }
 
-namespace {
-
-// Fragments [begin, end) get material m in their material channels.
-void fill_material(FragmentBuffer& f, std::size_t begin, std::size_t end, const Material& m) {
-    if (begin < end) f.set_material(begin, end, m);
-}
-
-}  // namespace
-
 void FragmentBuffer::fill_plain_runs(std::span<const MaterialRun> runs, std::size_t count) {
     bool any = false;
     for (const MaterialRun& run : runs)
-        if (run.plain) fill_material(*this, run.begin, run.end, *run.material), any = true;
+        if (run.plain) set_material(run.begin, run.end, *run.material), any = true;
     if (!any || count == 0) return;
     for (int c = albedo_r; c <= ao; ++c)  // as pad() fills them
         std::fill(channels_[c].begin() + count, channels_[c].begin() + padded_count(count), channels_[c][0]);
@@ -42,9 +33,9 @@ void FragmentBuffer::fill_plain_run_edges(std::span<const MaterialRun> runs, std
     for (const MaterialRun& run : runs) {
         if (!run.plain) continue;
         const std::size_t head_end = std::min<std::size_t>(run.end, down(run.begin + kLanePadding - 1));
-        fill_material(*this, run.begin, head_end, *run.material);
+        set_material(run.begin, head_end, *run.material);
         // The last run's batches run on into the padding, which counts as its own.
-        if (run.end < count) fill_material(*this, std::max<std::size_t>(head_end, down(run.end)), run.end, *run.material);
+        if (run.end < count) set_material(std::max<std::size_t>(head_end, down(run.end)), run.end, *run.material);
     }
 }
 
