@@ -28,6 +28,7 @@
 // reference's, so every ISA cuts the same lanes, and a light adds the same bits
 // to a lane whatever list it comes in (light culling gives the same image for
 // any tile or cluster size).
+#include <array>
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -125,9 +126,10 @@ struct Sums {
 // the compiler, fusing would depend on the code around them, and a light would
 // add different bits where a cluster needs the mask and where it does not.
 // Adding zero terms leaves the sums' bits as they were.
-[[gnu::always_inline]] inline void accumulate(Sums& sums, const LightTerms& t, float color_r, float color_g,
-                                              float color_b) {
-    const auto add_channel = [&](float color, Batch& diffuse, Batch& specular, Batch& specular_w) {
+template <class Colour>
+[[gnu::always_inline]] inline void accumulate(Sums& sums, const LightTerms& t, const Colour& color_r,
+                                              const Colour& color_g, const Colour& color_b) {
+    const auto add_channel = [&](const Colour& color, Batch& diffuse, Batch& specular, Batch& specular_w) {
         const Batch c(color);
         diffuse = xsimd::fma(c, t.diffuse, diffuse);
         specular = xsimd::fma(c, t.specular, specular);
@@ -139,8 +141,8 @@ struct Sums {
 }
 
 // Light k of the batch's list: light k itself, or (InRange) light index[k].
-template <bool InRange>
-[[gnu::always_inline]] inline std::size_t light_id(const LightArrays& lights, std::size_t k) {
+template <bool InRange, class Lights>
+[[gnu::always_inline]] inline std::size_t light_id(const Lights& lights, std::size_t k) {
     if constexpr (InRange) return lights.index[k] & kLightIndexMask;
     else return k;
 }
@@ -149,8 +151,8 @@ enum class LightKind { point, spot, directional };
 
 // The vector from the batch's fragments to light j: towards its position, or
 // (directional) against its direction.
-template <LightKind Kind>
-[[gnu::always_inline]] inline Vec3 to_light(const Surface& s, const LightArrays& lights, std::size_t j) {
+template <LightKind Kind, class Lights>
+[[gnu::always_inline]] inline Vec3 to_light(const Surface& s, const Lights& lights, std::size_t j) {
     if constexpr (Kind == LightKind::directional)
         return {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
     else
@@ -158,8 +160,8 @@ template <LightKind Kind>
 }
 
 // Light j's terms, given to_light and (point, spot) its length² as the range test rounds it.
-template <LightKind Kind>
-[[gnu::always_inline]] inline LightTerms terms_of(const Surface& s, const LightArrays& lights, std::size_t j,
+template <LightKind Kind, class Lights>
+[[gnu::always_inline]] inline LightTerms terms_of(const Surface& s, const Lights& lights, std::size_t j,
                                                   const Vec3& to, const Batch& distance_sq) {
     if constexpr (Kind == LightKind::directional) {  // L = −direction, no attenuation
         return light_terms(s, to, Batch(1.0f), Batch(1.0f));
@@ -189,7 +191,8 @@ template <LightKind Kind>
 }
 
 // sums += light j's colour × its terms.
-[[gnu::always_inline]] inline void add(Sums& sums, const LightArrays& lights, std::size_t j, const LightTerms& t) {
+template <class Lights>
+[[gnu::always_inline]] inline void add(Sums& sums, const Lights& lights, std::size_t j, const LightTerms& t) {
     accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
 }
 
@@ -199,8 +202,8 @@ template <LightKind Kind>
 // rather than waiting for it. With InRange, each point or spot light counts
 // only in the lanes within its range, unless its list entry says it reaches
 // them all (kReachesAll).
-template <bool InRange, LightKind Kind>
-[[gnu::always_inline]] inline void add_light_pair(Sums& sums, const Surface& s, const LightArrays& lights,
+template <bool InRange, LightKind Kind, class Lights>
+[[gnu::always_inline]] inline void add_light_pair(Sums& sums, const Surface& s, const Lights& lights,
                                                   std::size_t k) {
     constexpr bool cut = InRange && Kind != LightKind::directional;
     const std::size_t j0 = light_id<InRange>(lights, k), j1 = light_id<InRange>(lights, k + 1);
@@ -228,8 +231,8 @@ template <bool InRange, LightKind Kind>
 }
 
 // Light k of the list alone, as add_light_pair.
-template <bool InRange, LightKind Kind>
-[[gnu::always_inline]] inline void add_light(Sums& sums, const Surface& s, const LightArrays& lights, std::size_t k) {
+template <bool InRange, LightKind Kind, class Lights>
+[[gnu::always_inline]] inline void add_light(Sums& sums, const Surface& s, const Lights& lights, std::size_t k) {
     constexpr bool cut = InRange && Kind != LightKind::directional;
     const std::size_t j = light_id<InRange>(lights, k);
     const Vec3 to = to_light<Kind>(s, lights, j);
@@ -260,8 +263,8 @@ template <bool InRange, LightKind Kind>
 // the reference's four): the pairs unroll, the loop and the empty groups'
 // code vanish, and the compiler keeps more of the batch in registers. The same
 // operations on the same lights in the same order either way, so the same bits.
-template <bool InRange, std::size_t FixedPoints>
-[[gnu::always_inline]] inline void add_all_lights(Sums& sums, const Surface& s, const LightArrays& lights) {
+template <bool InRange, std::size_t FixedPoints, class Lights>
+[[gnu::always_inline]] inline void add_all_lights(Sums& sums, const Surface& s, const Lights& lights) {
     if constexpr (FixedPoints > 0) {
         static_assert(!InRange, "a fixed list is uncut");
         static_assert(FixedPoints <= 5, "two pairs at most, and one more");
@@ -291,9 +294,9 @@ MaterialBatch load_material(const FragmentInputs& in, std::size_t i) {
 // every light reaches every lane (shade_pbr). Inlined into a loop over a run of
 // one material, the terms of the material alone are worked out once per run
 // (the compiler hoists them), with the same operations, so the same bits.
-template <bool InRange, std::size_t FixedPoints = 0>
+template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
 [[gnu::always_inline]] inline void shade_batch_of(const FragmentInputs& in, std::size_t i, const MaterialBatch& m,
-                                                  const LightArrays& lights, const Vec3& cam_pos,
+                                                  const Lights& lights, const Vec3& cam_pos,
                                                   const RadianceOutputs& out) {
     Surface s;
     s.world_pos = load3(in.world_x, in.world_y, in.world_z, i);
@@ -348,26 +351,45 @@ template <bool InRange, std::size_t FixedPoints = 0>
 }
 
 // Each fragment its material from the material channels.
-template <bool InRange, std::size_t FixedPoints = 0>
-void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
+template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
+void shade_batch(const FragmentInputs& in, std::size_t i, const Lights& lights, const Vec3& cam_pos,
                  const RadianceOutputs& out) {
     shade_batch_of<InRange, FixedPoints>(in, i, load_material(in, i), lights, cam_pos, out);
 }
 
 // Batches [begin, end) of fragments all of material `material`.
-template <std::size_t FixedPoints>
+template <std::size_t FixedPoints, class Lights>
 void shade_uniform_batches(const FragmentInputs& in, std::size_t begin, std::size_t end, const Material& material,
-                           const LightArrays& lights, const Vec3& cam_pos, const RadianceOutputs& out) {
+                           const Lights& lights, const Vec3& cam_pos, const RadianceOutputs& out) {
     const MaterialBatch m = {{Batch(material.albedo.r), Batch(material.albedo.g), Batch(material.albedo.b)},
                              Batch(material.metallic), Batch(material.roughness), Batch(material.ao)};
     for (std::size_t i = begin; i < end; i += Batch::size)
         shade_batch_of<false, FixedPoints>(in, i, m, lights, cam_pos, out);
 }
 
+// The FixedPoints point lights of a LightArrays, each value broadcast once per
+// call rather than once per batch: the kernel reads them as memory operands.
+template <std::size_t FixedPoints>
+struct BroadcastPoints {
+    static constexpr std::size_t count = FixedPoints;
+    std::array<Batch, FixedPoints> pos_x, pos_y, pos_z, color_r, color_g, color_b;
+    explicit BroadcastPoints(const LightArrays& lights) {
+        for (std::size_t j = 0; j < FixedPoints; ++j) {
+            pos_x[j] = Batch(lights.pos_x[j]), pos_y[j] = Batch(lights.pos_y[j]), pos_z[j] = Batch(lights.pos_z[j]);
+            color_r[j] = Batch(lights.color_r[j]), color_g[j] = Batch(lights.color_g[j]);
+            color_b[j] = Batch(lights.color_b[j]);
+        }
+    }
+};
+
 // shade_fragment_runs over a light list as add_all_lights<false, FixedPoints> takes it.
 template <std::size_t FixedPoints>
-void shade_runs(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count, const LightArrays& lights,
-                const Vec3& cam, const RadianceOutputs& out) {
+void shade_runs(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,
+                const LightArrays& light_arrays, const Vec3& cam, const RadianceOutputs& out) {
+    const auto lights = [&] {
+        if constexpr (FixedPoints > 0) return BroadcastPoints<FixedPoints>(light_arrays);
+        else return light_arrays;
+    }();
     const std::size_t end = padded_count(in.count);
     std::size_t i = 0;
     for (std::size_t r = 0; r < run_count && i < end; ++r) {
