@@ -29,6 +29,8 @@
 // to a lane whatever list it comes in (light culling gives the same image for
 // any tile or cluster size).
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -190,10 +192,23 @@ template <LightKind Kind, class Lights>
     return distance_sq <= Batch(all ? INFINITY : lights.range_sq[j]);
 }
 
+// Whether every light of the list is grey (its three colour channels the same
+// bits): each channel's sums then take the same operations on the same values,
+// so the kernels sum the red channel alone and use it for all three.
+template <class Lights>
+inline constexpr bool grey_lights = false;
+
 // sums += light j's colour × its terms.
 template <class Lights>
 [[gnu::always_inline]] inline void add(Sums& sums, const Lights& lights, std::size_t j, const LightTerms& t) {
-    accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
+    if constexpr (grey_lights<Lights>) {
+        const Batch c(lights.color_r[j]);
+        sums.diffuse.x = xsimd::fma(c, t.diffuse, sums.diffuse.x);
+        sums.specular.x = xsimd::fma(c, t.specular, sums.specular.x);
+        sums.specular_w.x = xsimd::fma(c, t.specular_w, sums.specular_w.x);
+    } else {
+        accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
+    }
 }
 
 // Lights k and k + 1 of the list, both of type Kind: their instructions are
@@ -345,6 +360,9 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
         // multiply only with an add in the same basic block).
         return xsimd::fma(albedo_c, ambient, lo);
     };
+    if constexpr (grey_lights<Lights>) sums.diffuse.y = sums.diffuse.z = sums.diffuse.x,
+                                         sums.specular.y = sums.specular.z = sums.specular.x,
+                                         sums.specular_w.y = sums.specular_w.z = sums.specular_w.x;
     radiance(albedo.x, f0.x, sums.diffuse.x, sums.specular.x, sums.specular_w.x).store_unaligned(out.r + i);
     radiance(albedo.y, f0.y, sums.diffuse.y, sums.specular.y, sums.specular_w.y).store_unaligned(out.g + i);
     radiance(albedo.z, f0.z, sums.diffuse.z, sums.specular.z, sums.specular_w.z).store_unaligned(out.b + i);
@@ -369,25 +387,28 @@ void shade_uniform_batches(const FragmentInputs& in, std::size_t begin, std::siz
 
 // The FixedPoints point lights of a LightArrays, each value broadcast once per
 // call rather than once per batch: the kernel reads them as memory operands.
-template <std::size_t FixedPoints>
+// Grey: every light is grey (grey_lights), and only the red channel is kept.
+template <std::size_t FixedPoints, bool Grey>
 struct BroadcastPoints {
     static constexpr std::size_t count = FixedPoints;
     std::array<Batch, FixedPoints> pos_x, pos_y, pos_z, color_r, color_g, color_b;
     explicit BroadcastPoints(const LightArrays& lights) {
         for (std::size_t j = 0; j < FixedPoints; ++j) {
             pos_x[j] = Batch(lights.pos_x[j]), pos_y[j] = Batch(lights.pos_y[j]), pos_z[j] = Batch(lights.pos_z[j]);
-            color_r[j] = Batch(lights.color_r[j]), color_g[j] = Batch(lights.color_g[j]);
-            color_b[j] = Batch(lights.color_b[j]);
+            color_r[j] = Batch(lights.color_r[j]);
+            if constexpr (!Grey) color_g[j] = Batch(lights.color_g[j]), color_b[j] = Batch(lights.color_b[j]);
         }
     }
 };
+template <std::size_t FixedPoints>
+inline constexpr bool grey_lights<BroadcastPoints<FixedPoints, true>> = true;
 
 // shade_fragment_runs over a light list as add_all_lights<false, FixedPoints> takes it.
-template <std::size_t FixedPoints>
+template <std::size_t FixedPoints, bool Grey = false>
 void shade_runs(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,
                 const LightArrays& light_arrays, const Vec3& cam, const RadianceOutputs& out) {
     const auto lights = [&] {
-        if constexpr (FixedPoints > 0) return BroadcastPoints<FixedPoints>(light_arrays);
+        if constexpr (FixedPoints > 0) return BroadcastPoints<FixedPoints, Grey>(light_arrays);
         else return light_arrays;
     }();
     const std::size_t end = padded_count(in.count);
@@ -436,13 +457,22 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
                                              const RadianceOutputs& out) {
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
     // A few point lights and nothing else (the reference's scene has four):
-    // the list unrolled (add_all_lights).
+    // the list unrolled (add_all_lights), with one channel of sums where the
+    // lights are all grey (grey_lights; the reference's are white).
     const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count;
+    bool grey = true;
+    for (std::size_t j = 0; j < lights.count; ++j)
+        grey = grey && std::bit_cast<std::uint32_t>(lights.color_r[j]) == std::bit_cast<std::uint32_t>(lights.color_g[j]) &&
+               std::bit_cast<std::uint32_t>(lights.color_r[j]) == std::bit_cast<std::uint32_t>(lights.color_b[j]);
     switch (points_only ? lights.count : 0) {
-        case 1: return shade_runs<1>(in, runs, run_count, lights, cam, out);
-        case 2: return shade_runs<2>(in, runs, run_count, lights, cam, out);
-        case 3: return shade_runs<3>(in, runs, run_count, lights, cam, out);
-        case 4: return shade_runs<4>(in, runs, run_count, lights, cam, out);
+        case 1: return grey ? shade_runs<1, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<1>(in, runs, run_count, lights, cam, out);
+        case 2: return grey ? shade_runs<2, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<2>(in, runs, run_count, lights, cam, out);
+        case 3: return grey ? shade_runs<3, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<3>(in, runs, run_count, lights, cam, out);
+        case 4: return grey ? shade_runs<4, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<4>(in, runs, run_count, lights, cam, out);
         default: return shade_runs<0>(in, runs, run_count, lights, cam, out);
     }
 }
