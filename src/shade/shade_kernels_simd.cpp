@@ -22,7 +22,10 @@
 //    diffuse = albedo·(1 − metallic)/π: the kernel sums the bracketed terms
 //    times the light's colour (LightTerms, Sums) and applies the per-fragment
 //    factors once, after the lights;
-//  - lights go two at a time (add_lights).
+//  - lights go two at a time (add_lights); 1-4 point lights alone, uncut (a
+//    scene's few lights without ranges), take copies with the pairs unrolled
+//    and the lights broadcast once per call, which sum one colour channel
+//    where every light is grey (shade_fragment_runs; same bits).
 // The result stays within the tested bound of the reference
 // (tests/shade/test_shade_kernels.cpp). The range test rounds exactly as the
 // reference's, so every ISA cuts the same lanes, and a light adds the same bits
