@@ -24,8 +24,8 @@
 //    factors once, after the lights;
 //  - lights go two at a time (add_lights); 1-4 point lights alone, uncut (a
 //    scene's few lights without ranges), take copies with the pairs unrolled
-//    and the lights broadcast once per call, which sum one colour channel
-//    where every light is grey (shade_fragment_runs; same bits).
+//    and the lights broadcast once per call; where every light is grey, the
+//    uncut kernels sum one colour channel (shade_fragment_runs; same bits).
 // The result stays within the tested bound of the reference
 // (tests/shade/test_shade_kernels.cpp). The range test rounds exactly as the
 // reference's, so every ISA cuts the same lanes, and a light adds the same bits
@@ -406,12 +406,18 @@ struct BroadcastPoints {
 template <std::size_t FixedPoints>
 inline constexpr bool grey_lights<BroadcastPoints<FixedPoints, true>> = true;
 
+// Any list whose lights are all grey.
+struct GreyLightArrays : LightArrays {};
+template <>
+inline constexpr bool grey_lights<GreyLightArrays> = true;
+
 // shade_fragment_runs over a light list as add_all_lights<false, FixedPoints> takes it.
 template <std::size_t FixedPoints, bool Grey = false>
 void shade_runs(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,
                 const LightArrays& light_arrays, const Vec3& cam, const RadianceOutputs& out) {
     const auto lights = [&] {
         if constexpr (FixedPoints > 0) return BroadcastPoints<FixedPoints, Grey>(light_arrays);
+        else if constexpr (Grey) return GreyLightArrays{light_arrays};
         else return light_arrays;
     }();
     const std::size_t end = padded_count(in.count);
@@ -460,8 +466,8 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
                                              const RadianceOutputs& out) {
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
     // A few point lights and nothing else (the reference's scene has four):
-    // the list unrolled (add_all_lights), with one channel of sums where the
-    // lights are all grey (grey_lights; the reference's are white).
+    // the list unrolled (add_all_lights). Any list whose lights are all grey
+    // (grey_lights; the reference's are white): one channel of sums.
     const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count;
     bool grey = true;
     for (std::size_t j = 0; j < lights.count; ++j)
@@ -476,7 +482,8 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
                             : shade_runs<3>(in, runs, run_count, lights, cam, out);
         case 4: return grey ? shade_runs<4, true>(in, runs, run_count, lights, cam, out)
                             : shade_runs<4>(in, runs, run_count, lights, cam, out);
-        default: return shade_runs<0>(in, runs, run_count, lights, cam, out);
+        default: return grey ? shade_runs<0, true>(in, runs, run_count, lights, cam, out)
+                             : shade_runs<0>(in, runs, run_count, lights, cam, out);
     }
 }
 

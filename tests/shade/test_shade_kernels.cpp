@@ -107,15 +107,14 @@ glm::vec3 unit_vector(std::mt19937& rng) {
 // Fragments in a 16³ box, lights and camera in a 24³ box around it: light
 // distances run from 0.5 (closer ones are rejected) to about 35. Lights are of
 // every type, in random order; spot cones are at least 5° wide. With
-// point_lights > 0: that many point lights and no other, grey ones (the three
-// channels equal) if `grey`.
+// point_lights > 0: that many point lights and no other. Grey lights (the
+// three colour channels equal) if `grey`.
 RandomScene random_scene(std::mt19937& rng, std::size_t count, int point_lights = 0, bool grey = false) {
     RandomScene scene;
     scene.cam_pos = uniform3(rng, -12.0f, 12.0f);
     const int light_count = point_lights > 0 ? point_lights : std::uniform_int_distribution<int>(1, 8)(rng);
     for (int j = 0; j < light_count; ++j) {
         Light light{uniform3(rng, -12.0f, 12.0f), uniform3(rng, 0.0f, 300.0f)};
-        if (grey) light.color = glm::vec3(light.color.r);
         const int type = point_lights > 0 ? 0 : std::uniform_int_distribution<int>(0, 2)(rng);
         if (type == 1) {
             light.type = LightType::directional;
@@ -127,6 +126,7 @@ RandomScene random_scene(std::mt19937& rng, std::size_t count, int point_lights 
             light.inner_cone_degrees = uniform(rng, 0.0f, 60.0f);
             light.outer_cone_degrees = uniform(rng, light.inner_cone_degrees + 5.0f, 90.0f);
         }
+        if (grey) light.color = glm::vec3(light.color.r);
         scene.lights.push_back(light);
     }
 
@@ -449,6 +449,8 @@ std::size_t check_plain_runs(std::mt19937& rng, std::size_t min_total, int point
 TEST_CASE("shade_fragment_runs takes plain runs' material from the run, with shade_fragments' bits") {
     std::mt19937 rng(1311);
     CHECK(check_plain_runs(rng, 40000, 0, false) > 10000);
+    // Grey lights of every type: the kernel sums one colour channel.
+    CHECK(check_plain_runs(rng, 12000, 0, true) > 3000);
 }
 
 TEST_CASE("shade_fragment_runs unrolls lists of a few point lights with shade_fragments' bits") {
