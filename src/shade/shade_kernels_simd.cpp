@@ -363,9 +363,11 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
         // multiply only with an add in the same basic block).
         return xsimd::fma(albedo_c, ambient, lo);
     };
-    if constexpr (grey_lights<Lights>) sums.diffuse.y = sums.diffuse.z = sums.diffuse.x,
-                                         sums.specular.y = sums.specular.z = sums.specular.x,
-                                         sums.specular_w.y = sums.specular_w.z = sums.specular_w.x;
+    if constexpr (grey_lights<Lights>) {  // green and blue summed as red
+        sums.diffuse.y = sums.diffuse.z = sums.diffuse.x;
+        sums.specular.y = sums.specular.z = sums.specular.x;
+        sums.specular_w.y = sums.specular_w.z = sums.specular_w.x;
+    }
     radiance(albedo.x, f0.x, sums.diffuse.x, sums.specular.x, sums.specular_w.x).store_unaligned(out.r + i);
     radiance(albedo.y, f0.y, sums.diffuse.y, sums.specular.y, sums.specular_w.y).store_unaligned(out.g + i);
     radiance(albedo.z, f0.z, sums.diffuse.z, sums.specular.z, sums.specular_w.z).store_unaligned(out.b + i);
@@ -410,6 +412,16 @@ inline constexpr bool grey_lights<BroadcastPoints<FixedPoints, true>> = true;
 struct GreyLightArrays : LightArrays {};
 template <>
 inline constexpr bool grey_lights<GreyLightArrays> = true;
+
+// Whether every light's three colour channels have the same bits (true without lights).
+bool all_grey(const LightArrays& lights) {
+    const auto bits = [](float c) { return std::bit_cast<std::uint32_t>(c); };
+    for (std::size_t j = 0; j < lights.count; ++j) {
+        const std::uint32_t r = bits(lights.color_r[j]);
+        if (bits(lights.color_g[j]) != r || bits(lights.color_b[j]) != r) return false;
+    }
+    return true;
+}
 
 // shade_fragment_runs over a light list as add_all_lights<false, FixedPoints> takes it.
 template <std::size_t FixedPoints, bool Grey = false>
@@ -469,10 +481,7 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
     // the list unrolled (add_all_lights). Any list whose lights are all grey
     // (grey_lights; the reference's are white): one channel of sums.
     const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count;
-    bool grey = true;
-    for (std::size_t j = 0; j < lights.count; ++j)
-        grey = grey && std::bit_cast<std::uint32_t>(lights.color_r[j]) == std::bit_cast<std::uint32_t>(lights.color_g[j]) &&
-               std::bit_cast<std::uint32_t>(lights.color_r[j]) == std::bit_cast<std::uint32_t>(lights.color_b[j]);
+    const bool grey = all_grey(lights);
     switch (points_only ? lights.count : 0) {
         case 1: return grey ? shade_runs<1, true>(in, runs, run_count, lights, cam, out)
                             : shade_runs<1>(in, runs, run_count, lights, cam, out);
