@@ -22,12 +22,18 @@
 //    diffuse = albedo·(1 − metallic)/π: the kernel sums the bracketed terms
 //    times the light's colour (LightTerms, Sums) and applies the per-fragment
 //    factors once, after the lights;
-//  - lights go two at a time (add_lights).
+//  - lights go two at a time (add_lights); 1-4 point lights alone, uncut (a
+//    scene's few lights without ranges), take copies with the pairs unrolled
+//    and the lights broadcast once per call; where every light is grey, the
+//    uncut kernels sum one colour channel (shade_fragment_runs; same bits).
 // The result stays within the tested bound of the reference
 // (tests/shade/test_shade_kernels.cpp). The range test rounds exactly as the
 // reference's, so every ISA cuts the same lanes, and a light adds the same bits
 // to a lane whatever list it comes in (light culling gives the same image for
 // any tile or cluster size).
+#include <array>
+#include <bit>
+#include <cstdint>
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -125,9 +131,10 @@ struct Sums {
 // the compiler, fusing would depend on the code around them, and a light would
 // add different bits where a cluster needs the mask and where it does not.
 // Adding zero terms leaves the sums' bits as they were.
-[[gnu::always_inline]] inline void accumulate(Sums& sums, const LightTerms& t, float color_r, float color_g,
-                                              float color_b) {
-    const auto add_channel = [&](float color, Batch& diffuse, Batch& specular, Batch& specular_w) {
+template <class Colour>
+[[gnu::always_inline]] inline void accumulate(Sums& sums, const LightTerms& t, const Colour& color_r,
+                                              const Colour& color_g, const Colour& color_b) {
+    const auto add_channel = [&](const Colour& color, Batch& diffuse, Batch& specular, Batch& specular_w) {
         const Batch c(color);
         diffuse = xsimd::fma(c, t.diffuse, diffuse);
         specular = xsimd::fma(c, t.specular, specular);
@@ -139,8 +146,8 @@ struct Sums {
 }
 
 // Light k of the batch's list: light k itself, or (InRange) light index[k].
-template <bool InRange>
-[[gnu::always_inline]] inline std::size_t light_id(const LightArrays& lights, std::size_t k) {
+template <bool InRange, class Lights>
+[[gnu::always_inline]] inline std::size_t light_id(const Lights& lights, std::size_t k) {
     if constexpr (InRange) return lights.index[k] & kLightIndexMask;
     else return k;
 }
@@ -149,8 +156,8 @@ enum class LightKind { point, spot, directional };
 
 // The vector from the batch's fragments to light j: towards its position, or
 // (directional) against its direction.
-template <LightKind Kind>
-[[gnu::always_inline]] inline Vec3 to_light(const Surface& s, const LightArrays& lights, std::size_t j) {
+template <LightKind Kind, class Lights>
+[[gnu::always_inline]] inline Vec3 to_light(const Surface& s, const Lights& lights, std::size_t j) {
     if constexpr (Kind == LightKind::directional)
         return {Batch(-lights.dir_x[j]), Batch(-lights.dir_y[j]), Batch(-lights.dir_z[j])};
     else
@@ -158,8 +165,8 @@ template <LightKind Kind>
 }
 
 // Light j's terms, given to_light and (point, spot) its length² as the range test rounds it.
-template <LightKind Kind>
-[[gnu::always_inline]] inline LightTerms terms_of(const Surface& s, const LightArrays& lights, std::size_t j,
+template <LightKind Kind, class Lights>
+[[gnu::always_inline]] inline LightTerms terms_of(const Surface& s, const Lights& lights, std::size_t j,
                                                   const Vec3& to, const Batch& distance_sq) {
     if constexpr (Kind == LightKind::directional) {  // L = −direction, no attenuation
         return light_terms(s, to, Batch(1.0f), Batch(1.0f));
@@ -180,64 +187,112 @@ template <LightKind Kind>
     }
 }
 
-// Adds the lights [begin, end) of one type group. With InRange, each point or
-// spot light counts only in the lanes within its range, unless its list entry
-// says it reaches them all (kReachesAll).
-//
-// Lights go two at a time: their instructions are independent, so the core
-// overlaps one light's long chain of dependent operations (1/distance, V + L,
-// the GGX term, the division) with the other's rather than waiting for it.
+// Which lanes list entry k (light j) reaches: every lane for a kReachesAll
+// entry (its threshold is +inf), else those with distance² <= range².
+[[gnu::always_inline]] inline Mask reaches(const LightArrays& lights, std::size_t k, std::size_t j,
+                                           const Batch& distance_sq) {
+    const bool all = lights.index[k] & kReachesAll;
+    return distance_sq <= Batch(all ? INFINITY : lights.range_sq[j]);
+}
+
+// Whether every light of the list is grey (its three colour channels the same
+// bits): each channel's sums then take the same operations on the same values,
+// so the kernels sum the red channel alone and use it for all three.
+template <class Lights>
+inline constexpr bool grey_lights = false;
+
+// sums += light j's colour × its terms.
+template <class Lights>
+[[gnu::always_inline]] inline void add(Sums& sums, const Lights& lights, std::size_t j, const LightTerms& t) {
+    if constexpr (grey_lights<Lights>) {
+        const Batch c(lights.color_r[j]);
+        sums.diffuse.x = xsimd::fma(c, t.diffuse, sums.diffuse.x);
+        sums.specular.x = xsimd::fma(c, t.specular, sums.specular.x);
+        sums.specular_w.x = xsimd::fma(c, t.specular_w, sums.specular_w.x);
+    } else {
+        accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
+    }
+}
+
+// Lights k and k + 1 of the list, both of type Kind: their instructions are
+// independent, so the core overlaps one light's long chain of dependent
+// operations (1/distance, V + L, the GGX term, the division) with the other's
+// rather than waiting for it. With InRange, each point or spot light counts
+// only in the lanes within its range, unless its list entry says it reaches
+// them all (kReachesAll).
+template <bool InRange, LightKind Kind, class Lights>
+[[gnu::always_inline]] inline void add_light_pair(Sums& sums, const Surface& s, const Lights& lights,
+                                                  std::size_t k) {
+    constexpr bool cut = InRange && Kind != LightKind::directional;
+    const std::size_t j0 = light_id<InRange>(lights, k), j1 = light_id<InRange>(lights, k + 1);
+    const Vec3 to0 = to_light<Kind>(s, lights, j0), to1 = to_light<Kind>(s, lights, j1);
+    Batch distance_sq0(0.0f), distance_sq1(0.0f);
+    if constexpr (Kind != LightKind::directional) {
+        distance_sq0 = length_squared_unfused(to0);
+        distance_sq1 = length_squared_unfused(to1);
+    }
+    if constexpr (cut) {
+        const Mask reach0 = reaches(lights, k, j0, distance_sq0), reach1 = reaches(lights, k + 1, j1, distance_sq1);
+        if (!xsimd::all(reach0 & reach1)) {  // some lane out of range of either
+            if (!xsimd::any(reach0 | reach1)) return;
+            const LightTerms t0 = masked(terms_of<Kind>(s, lights, j0, to0, distance_sq0), reach0);
+            const LightTerms t1 = masked(terms_of<Kind>(s, lights, j1, to1, distance_sq1), reach1);
+            add(sums, lights, j0, t0);
+            add(sums, lights, j1, t1);
+            return;
+        }
+    }
+    const LightTerms t0 = terms_of<Kind>(s, lights, j0, to0, distance_sq0);
+    const LightTerms t1 = terms_of<Kind>(s, lights, j1, to1, distance_sq1);
+    add(sums, lights, j0, t0);
+    add(sums, lights, j1, t1);
+}
+
+// Light k of the list alone, as add_light_pair.
+template <bool InRange, LightKind Kind, class Lights>
+[[gnu::always_inline]] inline void add_light(Sums& sums, const Surface& s, const Lights& lights, std::size_t k) {
+    constexpr bool cut = InRange && Kind != LightKind::directional;
+    const std::size_t j = light_id<InRange>(lights, k);
+    const Vec3 to = to_light<Kind>(s, lights, j);
+    Batch distance_sq(0.0f);
+    if constexpr (Kind != LightKind::directional) distance_sq = length_squared_unfused(to);
+    if constexpr (cut) {
+        const Mask reach = reaches(lights, k, j, distance_sq);
+        if (!xsimd::all(reach)) {
+            if (xsimd::any(reach)) add(sums, lights, j, masked(terms_of<Kind>(s, lights, j, to, distance_sq), reach));
+            return;
+        }
+    }
+    add(sums, lights, j, terms_of<Kind>(s, lights, j, to, distance_sq));
+}
+
+// Adds the lights [begin, end) of one type group, two at a time.
 template <bool InRange, LightKind Kind>
 [[gnu::always_inline]] inline void add_lights(Sums& sums, const Surface& s, const LightArrays& lights,
                                               std::size_t begin, std::size_t end) {
-    constexpr bool cut = InRange && Kind != LightKind::directional;
-    // Which lanes list entry k (light j) reaches: every lane for a kReachesAll
-    // entry (its threshold is +inf), else those with distance² <= range².
-    const auto reaches = [&](std::size_t k, std::size_t j, const Batch& distance_sq) {
-        const bool all = lights.index[k] & kReachesAll;
-        return distance_sq <= Batch(all ? INFINITY : lights.range_sq[j]);
-    };
-    const auto add = [&](std::size_t j, const LightTerms& t) {
-        accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
-    };
     std::size_t k = begin;
-    for (; k + 2 <= end; k += 2) {
-        const std::size_t j0 = light_id<InRange>(lights, k), j1 = light_id<InRange>(lights, k + 1);
-        const Vec3 to0 = to_light<Kind>(s, lights, j0), to1 = to_light<Kind>(s, lights, j1);
-        Batch distance_sq0(0.0f), distance_sq1(0.0f);
-        if constexpr (Kind != LightKind::directional) {
-            distance_sq0 = length_squared_unfused(to0);
-            distance_sq1 = length_squared_unfused(to1);
-        }
-        if constexpr (cut) {
-            const Mask reach0 = reaches(k, j0, distance_sq0), reach1 = reaches(k + 1, j1, distance_sq1);
-            if (!xsimd::all(reach0 & reach1)) {  // some lane out of range of either
-                if (!xsimd::any(reach0 | reach1)) continue;
-                const LightTerms t0 = masked(terms_of<Kind>(s, lights, j0, to0, distance_sq0), reach0);
-                const LightTerms t1 = masked(terms_of<Kind>(s, lights, j1, to1, distance_sq1), reach1);
-                add(j0, t0);
-                add(j1, t1);
-                continue;
-            }
-        }
-        const LightTerms t0 = terms_of<Kind>(s, lights, j0, to0, distance_sq0);
-        const LightTerms t1 = terms_of<Kind>(s, lights, j1, to1, distance_sq1);
-        add(j0, t0);
-        add(j1, t1);
-    }
-    if (k < end) {
-        const std::size_t j = light_id<InRange>(lights, k);
-        const Vec3 to = to_light<Kind>(s, lights, j);
-        Batch distance_sq(0.0f);
-        if constexpr (Kind != LightKind::directional) distance_sq = length_squared_unfused(to);
-        if constexpr (cut) {
-            const Mask reach = reaches(k, j, distance_sq);
-            if (!xsimd::all(reach)) {
-                if (xsimd::any(reach)) add(j, masked(terms_of<Kind>(s, lights, j, to, distance_sq), reach));
-                return;
-            }
-        }
-        add(j, terms_of<Kind>(s, lights, j, to, distance_sq));
+    for (; k + 2 <= end; k += 2) add_light_pair<InRange, Kind>(sums, s, lights, k);
+    if (k < end) add_light<InRange, Kind>(sums, s, lights, k);
+}
+
+// The list's lights, in its order. FixedPoints = 0: any list, its type groups
+// and length read at run time. FixedPoints > 0: the list is that many point
+// lights and nothing else, uncut (a scene's few lights without ranges, such as
+// the reference's four): the pairs unroll, the loop and the empty groups'
+// code vanish, and the compiler keeps more of the batch in registers. The same
+// operations on the same lights in the same order either way, so the same bits.
+template <bool InRange, std::size_t FixedPoints, class Lights>
+[[gnu::always_inline]] inline void add_all_lights(Sums& sums, const Surface& s, const Lights& lights) {
+    if constexpr (FixedPoints > 0) {
+        static_assert(!InRange, "a fixed list is uncut");
+        static_assert(FixedPoints <= 5, "two pairs at most, and one more");
+        if constexpr (FixedPoints >= 2) add_light_pair<false, LightKind::point>(sums, s, lights, 0);
+        if constexpr (FixedPoints >= 4) add_light_pair<false, LightKind::point>(sums, s, lights, 2);
+        if constexpr (FixedPoints % 2 == 1) add_light<false, LightKind::point>(sums, s, lights, FixedPoints - 1);
+    } else {
+        add_lights<InRange, LightKind::point>(sums, s, lights, 0, lights.spot_begin);
+        add_lights<InRange, LightKind::spot>(sums, s, lights, lights.spot_begin, lights.directional_begin);
+        add_lights<InRange, LightKind::directional>(sums, s, lights, lights.directional_begin, lights.count);
     }
 }
 
@@ -257,9 +312,9 @@ MaterialBatch load_material(const FragmentInputs& in, std::size_t i) {
 // every light reaches every lane (shade_pbr). Inlined into a loop over a run of
 // one material, the terms of the material alone are worked out once per run
 // (the compiler hoists them), with the same operations, so the same bits.
-template <bool InRange>
+template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
 [[gnu::always_inline]] inline void shade_batch_of(const FragmentInputs& in, std::size_t i, const MaterialBatch& m,
-                                                  const LightArrays& lights, const Vec3& cam_pos,
+                                                  const Lights& lights, const Vec3& cam_pos,
                                                   const RadianceOutputs& out) {
     Surface s;
     s.world_pos = load3(in.world_x, in.world_y, in.world_z, i);
@@ -292,9 +347,7 @@ template <bool InRange>
     // the run loop, a store-forwarding stall per batch.
     const Batch zero(0.0f);
     Sums sums{{zero, zero, zero}, {zero, zero, zero}, {zero, zero, zero}};
-    add_lights<InRange, LightKind::point>(sums, s, lights, 0, lights.spot_begin);
-    add_lights<InRange, LightKind::spot>(sums, s, lights, lights.spot_begin, lights.directional_begin);
-    add_lights<InRange, LightKind::directional>(sums, s, lights, lights.directional_begin, lights.count);
+    add_all_lights<InRange, FixedPoints>(sums, s, lights);
 
     // Lo = diffuse·(1 − F0)·Σ E(1 − w) + F0·Σ E·spec + (1 − F0)·Σ E·spec·w, with
     // diffuse = albedo·(1 − metallic)/π (k_D·albedo/π = (1 − F)·diffuse, 1 − F = (1 − F0)(1 − w)).
@@ -310,24 +363,90 @@ template <bool InRange>
         // multiply only with an add in the same basic block).
         return xsimd::fma(albedo_c, ambient, lo);
     };
+    if constexpr (grey_lights<Lights>) {  // green and blue summed as red
+        sums.diffuse.y = sums.diffuse.z = sums.diffuse.x;
+        sums.specular.y = sums.specular.z = sums.specular.x;
+        sums.specular_w.y = sums.specular_w.z = sums.specular_w.x;
+    }
     radiance(albedo.x, f0.x, sums.diffuse.x, sums.specular.x, sums.specular_w.x).store_unaligned(out.r + i);
     radiance(albedo.y, f0.y, sums.diffuse.y, sums.specular.y, sums.specular_w.y).store_unaligned(out.g + i);
     radiance(albedo.z, f0.z, sums.diffuse.z, sums.specular.z, sums.specular_w.z).store_unaligned(out.b + i);
 }
 
 // Each fragment its material from the material channels.
-template <bool InRange>
-void shade_batch(const FragmentInputs& in, std::size_t i, const LightArrays& lights, const Vec3& cam_pos,
+template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
+void shade_batch(const FragmentInputs& in, std::size_t i, const Lights& lights, const Vec3& cam_pos,
                  const RadianceOutputs& out) {
-    shade_batch_of<InRange>(in, i, load_material(in, i), lights, cam_pos, out);
+    shade_batch_of<InRange, FixedPoints>(in, i, load_material(in, i), lights, cam_pos, out);
 }
 
 // Batches [begin, end) of fragments all of material `material`.
+template <std::size_t FixedPoints, class Lights>
 void shade_uniform_batches(const FragmentInputs& in, std::size_t begin, std::size_t end, const Material& material,
-                           const LightArrays& lights, const Vec3& cam_pos, const RadianceOutputs& out) {
+                           const Lights& lights, const Vec3& cam_pos, const RadianceOutputs& out) {
     const MaterialBatch m = {{Batch(material.albedo.r), Batch(material.albedo.g), Batch(material.albedo.b)},
                              Batch(material.metallic), Batch(material.roughness), Batch(material.ao)};
-    for (std::size_t i = begin; i < end; i += Batch::size) shade_batch_of<false>(in, i, m, lights, cam_pos, out);
+    for (std::size_t i = begin; i < end; i += Batch::size)
+        shade_batch_of<false, FixedPoints>(in, i, m, lights, cam_pos, out);
+}
+
+// The FixedPoints point lights of a LightArrays, each value broadcast once per
+// call rather than once per batch: the kernel reads them as memory operands.
+// Grey: every light is grey (grey_lights), and only the red channel is kept.
+template <std::size_t FixedPoints, bool Grey>
+struct BroadcastPoints {
+    static constexpr std::size_t count = FixedPoints;
+    std::array<Batch, FixedPoints> pos_x, pos_y, pos_z, color_r, color_g, color_b;
+    explicit BroadcastPoints(const LightArrays& lights) {
+        for (std::size_t j = 0; j < FixedPoints; ++j) {
+            pos_x[j] = Batch(lights.pos_x[j]), pos_y[j] = Batch(lights.pos_y[j]), pos_z[j] = Batch(lights.pos_z[j]);
+            color_r[j] = Batch(lights.color_r[j]);
+            if constexpr (!Grey) color_g[j] = Batch(lights.color_g[j]), color_b[j] = Batch(lights.color_b[j]);
+        }
+    }
+};
+template <std::size_t FixedPoints>
+inline constexpr bool grey_lights<BroadcastPoints<FixedPoints, true>> = true;
+
+// Any list whose lights are all grey.
+struct GreyLightArrays : LightArrays {};
+template <>
+inline constexpr bool grey_lights<GreyLightArrays> = true;
+
+// Whether every light's three colour channels have the same bits (true without lights).
+bool all_grey(const LightArrays& lights) {
+    const auto bits = [](float c) { return std::bit_cast<std::uint32_t>(c); };
+    for (std::size_t j = 0; j < lights.count; ++j) {
+        const std::uint32_t r = bits(lights.color_r[j]);
+        if (bits(lights.color_g[j]) != r || bits(lights.color_b[j]) != r) return false;
+    }
+    return true;
+}
+
+// shade_fragment_runs over a light list as add_all_lights<false, FixedPoints> takes it.
+template <std::size_t FixedPoints, bool Grey = false>
+void shade_runs(const FragmentInputs& in, const MaterialRun* runs, std::size_t run_count,
+                const LightArrays& light_arrays, const Vec3& cam, const RadianceOutputs& out) {
+    const auto lights = [&] {
+        if constexpr (FixedPoints > 0) return BroadcastPoints<FixedPoints, Grey>(light_arrays);
+        else if constexpr (Grey) return GreyLightArrays{light_arrays};
+        else return light_arrays;
+    }();
+    const std::size_t end = padded_count(in.count);
+    std::size_t i = 0;
+    for (std::size_t r = 0; r < run_count && i < end; ++r) {
+        const MaterialRun& run = runs[r];
+        // The run's last lane, the padding being the last run's; its batches
+        // wholly inside it (from i, the first batch the runs before did not
+        // shade), and then one it shares with the next run, if any.
+        const std::size_t run_end = r + 1 == run_count ? end : run.end;
+        const std::size_t inside_end = run_end / Batch::size * Batch::size;
+        if (run.plain && i >= run.begin && i < inside_end) {
+            shade_uniform_batches<FixedPoints>(in, i, inside_end, *run.material, lights, cam, out);
+            i = inside_end;
+        }
+        for (; i < run_end; i += Batch::size) shade_batch<false, FixedPoints>(in, i, lights, cam, out);
+    }
 }
 
 // Reinhard c / (c + 1), then c^(1/2.2) as exp(log(c)/2.2); c = 0 gives 0 (log would give -inf).
@@ -358,20 +477,22 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
                                              const LightArrays& lights, const glm::vec3& cam_pos,
                                              const RadianceOutputs& out) {
     const Vec3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
-    const std::size_t end = padded_count(in.count);
-    std::size_t i = 0;
-    for (std::size_t r = 0; r < run_count && i < end; ++r) {
-        const MaterialRun& run = runs[r];
-        // The run's last lane, the padding being the last run's; its batches
-        // wholly inside it (from i, the first batch the runs before did not
-        // shade), and then one it shares with the next run, if any.
-        const std::size_t run_end = r + 1 == run_count ? end : run.end;
-        const std::size_t inside_end = run_end / Batch::size * Batch::size;
-        if (run.plain && i >= run.begin && i < inside_end) {
-            shade_uniform_batches(in, i, inside_end, *run.material, lights, cam, out);
-            i = inside_end;
-        }
-        for (; i < run_end; i += Batch::size) shade_batch<false>(in, i, lights, cam, out);
+    // A few point lights and nothing else (the reference's scene has four):
+    // the list unrolled (add_all_lights). Any list whose lights are all grey
+    // (grey_lights; the reference's are white): one channel of sums.
+    const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count;
+    const bool grey = all_grey(lights);
+    switch (points_only ? lights.count : 0) {
+        case 1: return grey ? shade_runs<1, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<1>(in, runs, run_count, lights, cam, out);
+        case 2: return grey ? shade_runs<2, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<2>(in, runs, run_count, lights, cam, out);
+        case 3: return grey ? shade_runs<3, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<3>(in, runs, run_count, lights, cam, out);
+        case 4: return grey ? shade_runs<4, true>(in, runs, run_count, lights, cam, out)
+                            : shade_runs<4>(in, runs, run_count, lights, cam, out);
+        default: return grey ? shade_runs<0, true>(in, runs, run_count, lights, cam, out)
+                             : shade_runs<0>(in, runs, run_count, lights, cam, out);
     }
 }
 

@@ -106,14 +106,16 @@ glm::vec3 unit_vector(std::mt19937& rng) {
 
 // Fragments in a 16³ box, lights and camera in a 24³ box around it: light
 // distances run from 0.5 (closer ones are rejected) to about 35. Lights are of
-// every type, in random order; spot cones are at least 5° wide.
-RandomScene random_scene(std::mt19937& rng, std::size_t count) {
+// every type, in random order; spot cones are at least 5° wide. With
+// point_lights > 0: that many point lights and no other. Grey lights (the
+// three colour channels equal) if `grey`.
+RandomScene random_scene(std::mt19937& rng, std::size_t count, int point_lights = 0, bool grey = false) {
     RandomScene scene;
     scene.cam_pos = uniform3(rng, -12.0f, 12.0f);
-    const int light_count = std::uniform_int_distribution<int>(1, 8)(rng);
+    const int light_count = point_lights > 0 ? point_lights : std::uniform_int_distribution<int>(1, 8)(rng);
     for (int j = 0; j < light_count; ++j) {
         Light light{uniform3(rng, -12.0f, 12.0f), uniform3(rng, 0.0f, 300.0f)};
-        const int type = std::uniform_int_distribution<int>(0, 2)(rng);
+        const int type = point_lights > 0 ? 0 : std::uniform_int_distribution<int>(0, 2)(rng);
         if (type == 1) {
             light.type = LightType::directional;
             light.color = uniform3(rng, 0.0f, 3.0f);  // radiance itself, not radiance·distance²
@@ -124,6 +126,7 @@ RandomScene random_scene(std::mt19937& rng, std::size_t count) {
             light.inner_cone_degrees = uniform(rng, 0.0f, 60.0f);
             light.outer_cone_degrees = uniform(rng, light.inner_cone_degrees + 5.0f, 90.0f);
         }
+        if (grey) light.color = glm::vec3(light.color.r);
         scene.lights.push_back(light);
     }
 
@@ -374,16 +377,17 @@ TEST_CASE("SIMD shader matches the scalar reference on random fragments") {
 // material channels of plain runs hold garbage (NaN) except where
 // fill_plain_run_edges fills them; the result must be shade_fragments' with
 // every channel filled, bit for bit, for every ISA.
-TEST_CASE("shade_fragment_runs takes plain runs' material from the run, with shade_fragments' bits") {
-    std::mt19937 rng(1311);
-    const std::vector<std::size_t> sizes = scene_sizes(rng, 40000);
+// The check of the test case below over scenes of count fragments from
+// random_scene(rng, count, point_lights, grey); returns the fragments checked per ISA in plain runs.
+std::size_t check_plain_runs(std::mt19937& rng, std::size_t min_total, int point_lights, bool grey) {
+    const std::vector<std::size_t> sizes = scene_sizes(rng, min_total);
     std::vector<Material> materials(5);
     for (Material& m : materials)
         m = {.albedo = uniform3(rng, 0.0f, 1.0f), .metallic = uniform(rng, 0.0f, 1.0f),
              .roughness = uniform(rng, 0.05f, 1.0f), .ao = uniform(rng, 0.0f, 1.0f)};
     std::size_t uniform_fragments = 0, checked = 0;
     for (const std::size_t count : sizes) {
-        RandomScene scene = random_scene(rng, count);
+        RandomScene scene = random_scene(rng, count, point_lights, grey);
         Fragments& f = scene.fragments;
         // Runs of 1 to 40 fragments (some up to 300), most of them plain.
         std::vector<MaterialRun> runs;
@@ -439,7 +443,27 @@ TEST_CASE("shade_fragment_runs takes plain runs' material from the run, with sha
         }
     }
     MESSAGE(checked, " fragments checked, ", uniform_fragments, " per ISA in plain runs");
-    CHECK(uniform_fragments > 10000);
+    return uniform_fragments;
+}
+
+TEST_CASE("shade_fragment_runs takes plain runs' material from the run, with shade_fragments' bits") {
+    std::mt19937 rng(1311);
+    CHECK(check_plain_runs(rng, 40000, 0, false) > 10000);
+    // Grey lights of every type: the kernel sums one colour channel.
+    CHECK(check_plain_runs(rng, 12000, 0, true) > 3000);
+}
+
+TEST_CASE("shade_fragment_runs unrolls lists of a few point lights with shade_fragments' bits") {
+    // One to four point lights and nothing else take an unrolled copy of the
+    // kernel (the reference scene's four among them), which sums one colour
+    // channel where every light is grey; five, the loop.
+    std::mt19937 rng(4077);
+    for (const bool grey : {false, true})
+        for (int point_lights = 1; point_lights <= 5; ++point_lights) {
+            CAPTURE(grey);
+            CAPTURE(point_lights);
+            CHECK(check_plain_runs(rng, 8000, point_lights, grey) > 2000);
+        }
 }
 
 TEST_CASE("SIMD tonemap_gamma matches display_from_radiance") {

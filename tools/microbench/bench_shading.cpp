@@ -89,6 +89,31 @@ void bench_shade(benchmark::State& state, Isa isa) {
     state.counters["ns_per_fragment_light"] = time_per_unit(work);
 }
 
+// shade_fragment_runs over one plain run (the race's untextured spheres: the
+// gather leaves the material channels unfilled and the kernel broadcasts the
+// run's material), the fragments as above.
+void bench_shade_plain_run(benchmark::State& state, Isa isa) {
+    if (skip_if_unsupported(state, isa)) return;
+    const auto light_count = std::size_t(state.range(0));
+    std::mt19937 rng(kSeed);
+    FragmentBuffer fragments = make_fragments(rng);
+    const ShadingLights lights = make_lights(light_count, rng);
+    const Material material{.albedo = {0.5f, 0.0f, 0.0f}, .metallic = 0.25f, .roughness = 0.4f, .ao = 1.0f};
+    fragments.set_material(0, kFragments, material);
+    const shade::MaterialRun run{0, std::uint32_t(kFragments), &material, false, true};
+    const shade::FragmentInputs in = fragments.inputs(kFragments);
+    const shade::RadianceOutputs out = fragments.outputs();
+    for (auto _ : state) {
+        shade::shade_fragment_runs(isa, in, {&run, 1}, lights, out);
+        benchmark::DoNotOptimize(out.r);
+        benchmark::ClobberMemory();
+    }
+    const double work = double(kFragments) * double(light_count);
+    state.SetItemsProcessed(state.iterations() * std::int64_t(work));
+    state.counters["ns_per_fragment_light"] = time_per_unit(work);
+    state.counters["ns_per_fragment"] = time_per_unit(double(kFragments));
+}
+
 // tonemap_gamma works in place, so each iteration first restores its input
 // (the HDR radiance of the fragments above under the demo's four lights): that
 // copy of 3 × 16 KB, within L2, is timed too; tonemap/restore_only is its cost.
@@ -132,6 +157,12 @@ void bench_tonemap(benchmark::State& state, Isa isa, bool restore_only) {
             ->Arg(1)
             ->Arg(4)
             ->Arg(16);
+        benchmark::RegisterBenchmark(("shade_plain_run/" + name).c_str(), bench_shade_plain_run, isa)
+            ->ArgName("lights")
+            ->Arg(1)
+            ->Arg(2)
+            ->Arg(4)
+            ->Arg(8);
     }
     for (const Isa isa : kIsas)
         benchmark::RegisterBenchmark(("tonemap/" + std::string(simd::isa_name(isa))).c_str(), bench_tonemap, isa, false);
