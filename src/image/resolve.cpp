@@ -5,7 +5,6 @@
 #include <cstring>
 #include <limits>
 
-#include "image/display_row_store.hpp"
 #include "image/resolve_kernels.hpp"
 #include "image/resolve_msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
@@ -81,12 +80,12 @@ std::uint32_t packed_clear(const ClearValues& clear) {
 }
 
 void clear_tile_display(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image) {
-    // One row of the clear colour, stored to each row of the tile.
-    alignas(64) std::uint8_t row[3 * raster::kMaxTileSize];
+    // One row of the clear colour, copied to each row of the tile.
+    std::uint8_t row[3 * raster::kMaxTileSize];
     const std::size_t row_bytes = 3 * std::size_t(rect.width());
     for (std::size_t i = 0; i < row_bytes; i += 3) std::memcpy(row + i, clear.display, 3);
     for (int y = rect.y0; y < rect.y1; ++y)
-        store_display_row(&image.display[3 * (std::size_t(y) * image.width + rect.x0)], row, row_bytes);
+        std::memcpy(&image.display[3 * (std::size_t(y) * image.width + rect.x0)], row, row_bytes);
 }
 
 // The display rows of a tile: covered pixels take the next encoded fragment,

@@ -10,9 +10,7 @@
 
 #include "simd/kernel_prelude.hpp"
 
-#include "image/display_row_store.hpp"
 #include "image/resolve_msaa_kernels.hpp"
-#include "raster/raster_limits.hpp"
 
 namespace tessera::image {
 namespace {
@@ -126,11 +124,9 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_radiance_rows)(const MsaaResolveRows& rows)
 }
 
 void TESSERA_SIMD_ENTRY(resolve_msaa_display_rows)(const MsaaResolveRows& rows) {
-    // Each row is built here, in L1, then stored whole (display_row_store.hpp);
-    // slack for the 32-byte stores of 24-byte steps.
-    alignas(64) std::uint8_t out[3 * raster::kMaxTileSize + 32];
     for (int y = 0; y < rows.height; ++y) {
         const std::int32_t* fragment = rows.fragment + std::size_t(4) * rows.side * y;
+        std::uint8_t* out = rows.display + rows.display_stride * y;
         int x = 0;
 #if defined(__AVX2__)
         // Eight pixels a step: four vectors of two pixels' samples, their
@@ -153,7 +149,8 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_display_rows)(const MsaaResolveRows& rows) 
                 _mm256_and_si256(_mm256_and_si256(_mm256_loadu_si256(indices), _mm256_loadu_si256(indices + 1)),
                                  _mm256_and_si256(_mm256_loadu_si256(indices + 2), _mm256_loadu_si256(indices + 3)));
             if (_mm256_testc_si256(all_samples, _mm256_set1_epi32(-1))) {  // every index -1
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 3 * x), clear_rgb);
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 3 * x), _mm256_castsi256_si128(clear_rgb));
+                _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 3 * x + 16), _mm256_extracti128_si256(clear_rgb, 1));
                 continue;
             }
             __m256i low[4], high[4];
@@ -170,8 +167,8 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_display_rows)(const MsaaResolveRows& rows) 
             const __m256i h = _mm256_and_si256(_mm256_srli_epi32(_mm256_add_epi32(high_sums, two), 2), bytes02);
             const __m256i pixels = _mm256_permutevar8x32_epi32(_mm256_or_si256(l, _mm256_slli_epi32(h, 8)), pixel_order);
             const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixels, pack_bytes), join_halves);
-            // 32 bytes stored, the last 8 overwritten by the next step (the row has room).
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + 3 * x), rgb);
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 3 * x), _mm256_castsi256_si128(rgb));
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 3 * x + 16), _mm256_extracti128_si256(rgb, 1));
         }
 #else
         // Four pixels a step, one vector of samples each.
@@ -189,7 +186,6 @@ void TESSERA_SIMD_ENTRY(resolve_msaa_display_rows)(const MsaaResolveRows& rows) 
         }
 #endif
         for (; x < rows.width; ++x) display_pixel(rows, fragment + 4 * x, out + 3 * x);
-        store_display_row(rows.display + rows.display_stride * y, out, 3 * std::size_t(rows.width));
     }
 }
 

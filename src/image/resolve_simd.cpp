@@ -12,9 +12,7 @@
 
 #include "simd/kernel_prelude.hpp"
 
-#include "image/display_row_store.hpp"
 #include "image/resolve_kernels.hpp"
-#include "raster/raster_limits.hpp"
 
 namespace tessera::image {
 namespace {
@@ -77,9 +75,6 @@ void TESSERA_SIMD_ENTRY(write_display_rows)(const DisplayRows& rows) {
     PixelCursor cursor{rows.encoded, rows.clear};
     const float* depth = rows.depth;
     std::uint8_t* display = rows.display;
-    // Each row is built here, in L1, then stored whole (display_row_store.hpp);
-    // Slack for the 32-byte stores of 24-byte steps.
-    alignas(64) std::uint8_t row[3 * raster::kMaxTileSize + 32];
     for (int y = 0; y < rows.height; ++y, depth += rows.side, display += rows.stride) {
         int x = 0;
 #if defined(__AVX2__)
@@ -90,28 +85,23 @@ void TESSERA_SIMD_ENTRY(write_display_rows)(const DisplayRows& rows) {
         const __m256i pack_bytes = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
                                                     0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
         const __m256i join_halves = _mm256_setr_epi32(0, 1, 2, 4, 5, 6, 3, 7);
-        const __m256i clear_rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(clear, pack_bytes), join_halves);
         for (; x + 8 <= rows.width; x += 8) {
             const __m256 covered_lanes = _mm256_cmp_ps(_mm256_loadu_ps(depth + x), one, _CMP_LT_OQ);
             const unsigned mask = unsigned(_mm256_movemask_ps(covered_lanes));
-            __m256i rgb = clear_rgb;  // 8 background pixels (most of a frame's) need no colours
-            if (mask != 0) {
-                const int covered = std::popcount(mask);
-                // The next `covered` colours (no lane past them is read: the array may end there).
-                const __m256i take = _mm256_cmpgt_epi32(_mm256_set1_epi32(covered), lane);
-                const __m256i next = _mm256_maskload_epi32(reinterpret_cast<const int*>(rows.encoded + cursor.k), take);
-                const __m256i spread = _mm256_permutevar8x32_epi32(
-                    next, _mm256_load_si256(reinterpret_cast<const __m256i*>(kExpand.lane[mask])));
-                const __m256i pixels = _mm256_blendv_epi8(clear, spread, _mm256_castps_si256(covered_lanes));
-                cursor.k += std::size_t(covered);
-                rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixels, pack_bytes), join_halves);
-            }
-            // 32 bytes stored, the last 8 overwritten by the next step (the row has room).
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(row + 3 * x), rgb);
+            const int covered = std::popcount(mask);
+            // The next `covered` colours (no lane past them is read: the array may end there).
+            const __m256i take = _mm256_cmpgt_epi32(_mm256_set1_epi32(covered), lane);
+            const __m256i next = _mm256_maskload_epi32(reinterpret_cast<const int*>(rows.encoded + cursor.k), take);
+            const __m256i spread = _mm256_permutevar8x32_epi32(
+                next, _mm256_load_si256(reinterpret_cast<const __m256i*>(kExpand.lane[mask])));
+            const __m256i pixels = _mm256_blendv_epi8(clear, spread, _mm256_castps_si256(covered_lanes));
+            cursor.k += std::size_t(covered);
+            const __m256i rgb = _mm256_permutevar8x32_epi32(_mm256_shuffle_epi8(pixels, pack_bytes), join_halves);
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(display + 3 * x), _mm256_castsi256_si128(rgb));
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(display + 3 * x + 16), _mm256_extracti128_si256(rgb, 1));
         }
 #endif
-        if (x < rows.width) write_tail(cursor, depth, row, x, rows.width);
-        store_display_row(display, row, 3 * std::size_t(rows.width));
+        if (x < rows.width) write_tail(cursor, depth, display, x, rows.width);
     }
 }
 

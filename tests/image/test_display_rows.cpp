@@ -1,10 +1,11 @@
-// The display rows' stores (image/display_row_store.hpp): a tile row is built
-// in a buffer and stored as partial lines at either end and whole 64-byte lines
-// between, with runs of 8 background pixels taking a shortcut. These tests put
-// tiles at every alignment of their first byte to a cache line, at every width
-// (rows ending mid-vector), against the image's right and bottom edges, with
-// background runs of every length at every offset, and hold every ISA to the
-// scalar path byte for byte, with nothing outside the tile written.
+// Where the display kernels' stores meet the image: a tile row of RGB8 starts
+// at any byte of a cache line, the vector loops store 8 pixels (24 bytes) at a
+// time and the rows' tails pixel by pixel, and 8-pixel groups may hold no
+// covered pixel at all. These tests put tiles at every alignment of their
+// first byte to a cache line, at every width (rows ending mid-vector), against
+// the image's right and bottom edges, with background runs of every length at
+// every offset, and hold every ISA to the scalar path byte for byte, with
+// nothing outside the tile written (clear_tile too).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -124,7 +125,7 @@ TEST_CASE("resolve_tile: background runs at every offset, every width and alignm
             ++compared;
         }
     }
-    CHECK(background_groups > 100);  // the shortcut was taken, at many offsets
+    CHECK(background_groups > 100);  // whole 8-pixel groups of background, at many offsets
     CHECK(compared > 0);
 }
 
