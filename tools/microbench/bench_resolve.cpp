@@ -67,16 +67,22 @@ void bench_resolve(benchmark::State& state, Isa isa, double coverage, bool radia
 namespace tessera::microbench {
 namespace {
 
-// encode_display_unorm8 alone on 4096 pixels of log-uniform radiance (in L1/L2);
+// encode_display_unorm8 alone on 4096 pixels of log-uniform radiance (random)
+// or of slow ramps (smooth, neighbours in nearby table buckets), in L1/L2;
 // in place, so each iteration restores the red channel (16 KB, timed too).
-void bench_encode(benchmark::State& state, Isa isa) {
+void bench_encode(benchmark::State& state, Isa isa, bool smooth) {
     if (skip_if_unsupported(state, isa)) return;
     constexpr std::size_t kCount = 4096;
     std::mt19937 rng(kSeed);
     std::uniform_real_distribution<float> exponent(-4.0f, 1.5f);
     std::vector<float> r(simd::padded_count(kCount)), g(r.size()), b(r.size());
-    for (std::size_t k = 0; k < kCount; ++k)
+    for (std::size_t k = 0; k < kCount; ++k) {
         r[k] = std::pow(10.0f, exponent(rng)), g[k] = std::pow(10.0f, exponent(rng)), b[k] = std::pow(10.0f, exponent(rng));
+        if (smooth) {  // slow ramps, as across a smoothly lit surface at 4K
+            const float t = float(k % 256) / 256.0f;
+            r[k] = 0.05f + 0.1f * t, g[k] = 0.2f + 0.3f * t * t, b[k] = 0.4f * (1.0f - 0.5f * t);
+        }
+    }
     const std::vector<float> r_saved = r;
     for (auto _ : state) {
         std::copy(r_saved.begin(), r_saved.end(), r.begin());
@@ -90,7 +96,10 @@ void bench_encode(benchmark::State& state, Isa isa) {
 
 [[maybe_unused]] const bool registered_encode = [] {
     for (const Isa isa : kIsas)
-        benchmark::RegisterBenchmark(("encode_display/" + std::string(simd::isa_name(isa))).c_str(), bench_encode, isa);
+        for (const bool smooth : {false, true})
+            benchmark::RegisterBenchmark(
+                ("encode_display/" + std::string(simd::isa_name(isa)) + (smooth ? "/smooth" : "/random")).c_str(),
+                bench_encode, isa, smooth);
     return true;
 }();
 
