@@ -43,13 +43,17 @@ using Float4 = float __attribute__((vector_size(16)));
 inline Float4 float4_from(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0f}; }
 inline glm::vec3 vec3_from(const Float4& v) { return {v[0], v[1], v[2]}; }
 struct alignas(64) GatheredTriangle {
-    Float4 world0, world_d1, world_d2, normal0, normal_d1, normal_d2;
+    // WorldPos and Normal side by side, so that AVX2 takes a pair as one 8-float vector.
+    Float4 world0, normal0, world_d1, normal_d1, world_d2, normal_d2;
     // 1/w of the corners, and a spare float: the set-up stores the four lanes of a vector.
     struct alignas(16) InvW {
         std::array<float, 3> lanes;
         float spare;
     } inv_w;
     const Material* material;
+    // The material's address, its lowest bit set where beyond_plain: a fragment
+    // needs the out-of-line path (new run, extras) unless this equals its run's material.
+    std::uintptr_t run_key;
     bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
 };
 struct GatheredTriangleExtras {
@@ -66,11 +70,17 @@ struct TriangleTable {
     std::vector<std::uint32_t> new_id;  // the triangle
     std::vector<std::uint32_t> entry_of_fragment;
     std::uint32_t epoch = 0;
-    std::vector<std::uint32_t> pixels;  // the covered pixels of a one-sample tile
+    // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
+    // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
+    static constexpr std::size_t kPackSlack = 16;
+    std::vector<std::uint32_t> pixels, ids;
+    std::vector<float> lambda1, lambda2;
 
     void reserve(std::size_t max_fragments) {
         entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
-        entry_of_fragment.resize(max_fragments), pixels.resize(max_fragments);
+        entry_of_fragment.resize(max_fragments + kPackSlack);
+        for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);
+        for (auto* v : {&lambda1, &lambda2}) v->resize(max_fragments + kPackSlack);
     }
     // Forgets every entry (valid ones have this epoch).
     void start_tile() {
