@@ -50,12 +50,13 @@ struct alignas(64) GatheredTriangle {
         std::array<float, 3> lanes;
         float spare;
     } inv_w;
-    const Material* material;
     // The material's address, its lowest bit set where beyond_plain: a fragment
     // needs the out-of-line path (new run, extras) unless this equals its run's material.
     std::uintptr_t run_key;
     bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
+    const Material* material() const { return reinterpret_cast<const Material*>(run_key & ~std::uintptr_t(1)); }
 };
+static_assert(sizeof(GatheredTriangle) == 128, "two cache lines; entries are addressed by a shift");
 struct GatheredTriangleExtras {
     TriangleCorners corners;
     glm::vec2 uv0, uv_d1, uv_d2;
@@ -63,12 +64,13 @@ struct GatheredTriangleExtras {
 struct TriangleTable {
     static constexpr std::size_t kSize = 512;
     std::vector<std::uint64_t> tag;  // per slot: epoch << 32 | triangle id
-    std::vector<std::uint32_t> entry_of_slot;  // per slot: the entry of its triangle
+    std::vector<std::uint32_t> entry_of_slot;  // per slot: the entry of its triangle, in bytes from the first
     // Per set-up of a gather (at most one per fragment):
     std::vector<GatheredTriangle> entry;
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
     std::vector<std::uint32_t> new_id;  // the triangle
-    std::vector<std::uint32_t> entry_of_fragment;
+    std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as entry_of_slot)
+    std::vector<std::uint32_t> slot_of_fragment;
     std::uint32_t epoch = 0;
     // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
     // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
@@ -78,7 +80,7 @@ struct TriangleTable {
 
     void reserve(std::size_t max_fragments) {
         entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
-        entry_of_fragment.resize(max_fragments + kPackSlack);
+        entry_of_fragment.resize(max_fragments + kPackSlack), slot_of_fragment.resize(max_fragments + kPackSlack);
         for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);
         for (auto* v : {&lambda1, &lambda2}) v->resize(max_fragments + kPackSlack);
     }

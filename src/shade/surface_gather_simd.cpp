@@ -206,7 +206,13 @@ public:
         std::uint32_t* const entry_of_slot = table_.entry_of_slot.data();
         std::uint32_t* const entry_of_fragment = table_.entry_of_fragment.data();
         std::uint32_t* const new_ids = table_.new_id.data();
-        const GatheredTriangle* const entries = table_.entry.data();
+        std::uint32_t* const slot_of_fragment = table_.slot_of_fragment.data();
+        // Entries by their offset in bytes: no multiply per fragment.
+        const char* const entries = reinterpret_cast<const char*>(table_.entry.data());
+        const auto entry_at = [entries](std::uint32_t offset) {
+            return reinterpret_cast<const GatheredTriangle*>(entries + offset);
+        };
+        constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
         std::uintptr_t run_key = 0;  // the current run's material (no run yet: none)
         alignas(32) float batch_b1[kBatch], batch_b2[kBatch];  // perspective barycentrics of a batch's vectors
         // In batches, each in three loops, so that no branch depends on whether
@@ -217,15 +223,26 @@ public:
         std::size_t entry_count = 0;
         for (std::size_t begin = 0; begin < count; begin += kBatch) {
             const std::size_t end = std::min(count, begin + kBatch), first_new = entry_count;
-            for (std::size_t i = begin; i < end; ++i) {
+            std::size_t i = begin;
+#if defined(__AVX2__)
+            // The table slots of 8 ids at a time (TriangleTable::slot).
+            for (; i + 8 <= end; i += 8) {
+                const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i));
+                const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot_of_fragment + i),
+                                    _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
+            }
+#endif
+            for (; i < end; ++i) slot_of_fragment[i] = std::uint32_t(TriangleTable::slot(ids[i]));
+            for (i = begin; i < end; ++i) {
                 const std::uint32_t id = ids[i];
-                const std::size_t slot = TriangleTable::slot(id);
+                const std::uint32_t slot = slot_of_fragment[i];
                 const bool is_new = tags[slot] != (key_base | id);
                 tags[slot] = key_base | id;
                 new_ids[entry_count] = id;  // kept where is_new
                 // A mask, not ?:, which g++ compiles to a branch here.
-                const std::uint32_t new_mask = 0u - std::uint32_t(is_new);
-                const std::uint32_t entry = (std::uint32_t(entry_count) & new_mask) | (entry_of_slot[slot] & ~new_mask);
+                const std::uint32_t new_mask = 0u - std::uint32_t(is_new), old_entry = entry_of_slot[slot];
+                const std::uint32_t entry = old_entry ^ ((old_entry ^ std::uint32_t(entry_count) * kEntryBytes) & new_mask);
                 entry_of_slot[slot] = entry;
                 entry_of_fragment[i] = entry;
                 entry_count += std::size_t(is_new);
@@ -236,28 +253,27 @@ public:
             // divisions of several vectors overlap; then, four fragments at a
             // time, their WorldPos and Normal, transposed into the channels.
             const std::size_t fours_end = begin + (end - begin) / 4 * 4;
-            std::size_t i = begin;
+            i = begin;
 #if defined(__AVX2__)
             for (; i + 8 <= fours_end; i += 8) {
                 const GatheredTriangle* const t[8] = {
-                    &entries[entry_of_fragment[i]],     &entries[entry_of_fragment[i + 1]],
-                    &entries[entry_of_fragment[i + 2]], &entries[entry_of_fragment[i + 3]],
-                    &entries[entry_of_fragment[i + 4]], &entries[entry_of_fragment[i + 5]],
-                    &entries[entry_of_fragment[i + 6]], &entries[entry_of_fragment[i + 7]]};
+                    entry_at(entry_of_fragment[i]),     entry_at(entry_of_fragment[i + 1]),
+                    entry_at(entry_of_fragment[i + 2]), entry_at(entry_of_fragment[i + 3]),
+                    entry_at(entry_of_fragment[i + 4]), entry_at(entry_of_fragment[i + 5]),
+                    entry_at(entry_of_fragment[i + 6]), entry_at(entry_of_fragment[i + 7])};
                 perspective_barycentrics8(t, lambda1 + i, lambda2 + i, &batch_b1[i - begin], &batch_b2[i - begin]);
             }
 #endif
             for (; i < fours_end; i += 4) {
-                const GatheredTriangle* const t[4] = {&entries[entry_of_fragment[i]], &entries[entry_of_fragment[i + 1]],
-                                                      &entries[entry_of_fragment[i + 2]],
-                                                      &entries[entry_of_fragment[i + 3]]};
+                const GatheredTriangle* const t[4] = {entry_at(entry_of_fragment[i]), entry_at(entry_of_fragment[i + 1]),
+                                                      entry_at(entry_of_fragment[i + 2]), entry_at(entry_of_fragment[i + 3])};
                 perspective_barycentrics4(t, lambda1 + i, lambda2 + i, &batch_b1[i - begin], &batch_b2[i - begin]);
             }
             for (i = begin; i < fours_end; i += 4) {
                 const std::uint32_t entry[4] = {entry_of_fragment[i], entry_of_fragment[i + 1],
                                                 entry_of_fragment[i + 2], entry_of_fragment[i + 3]};
-                const GatheredTriangle* const t[4] = {&entries[entry[0]], &entries[entry[1]], &entries[entry[2]],
-                                                      &entries[entry[3]]};
+                const GatheredTriangle* const t[4] = {entry_at(entry[0]), entry_at(entry[1]), entry_at(entry[2]),
+                                                      entry_at(entry[3])};
                 const float* const b1 = &batch_b1[i - begin];
                 const float* const b2 = &batch_b2[i - begin];
 #if defined(__AVX2__)
@@ -290,11 +306,11 @@ public:
 #endif
                 for (int k = 0; k < 4; ++k)
                     if (t[k]->run_key != run_key) [[unlikely]]
-                        run_key = change_run_or_add_extras(i + k, entry[k], b1[k], b2[k]);
+                        run_key = change_run_or_add_extras(i + k, entry[k] / kEntryBytes, b1[k], b2[k]);
             }
             for (; i < end; ++i) {
-                const std::size_t entry = entry_of_fragment[i];
-                const GatheredTriangle& t = entries[entry];
+                const std::size_t entry = entry_of_fragment[i] / kEntryBytes;
+                const GatheredTriangle& t = *entry_at(entry_of_fragment[i]);
                 const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1[i], lambda2[i]);
                 const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
                 const Float4 normal = t.normal0 + b1 * t.normal_d1 + b2 * t.normal_d2;
@@ -320,7 +336,7 @@ private:
         const geometry::ShadedVertex* const corner[3] = {&lookup_.vertex(chunk, triangle.vertex[0]),
                                                          &lookup_.vertex(chunk, triangle.vertex[1]),
                                                          &lookup_.vertex(chunk, triangle.vertex[2])};
-        set_up_geometry(t, corner, chunk.material);
+        set_up_geometry(t, corner);
         t.beyond_plain = chunk.beyond_plain;
         t.textured = false;
         t.run_key = reinterpret_cast<std::uintptr_t>(chunk.material) | std::uintptr_t(chunk.beyond_plain);
@@ -330,9 +346,7 @@ private:
 
     // 1/w and the corner differences: lane-wise IEEE operations, the same
     // bits per component as the reference's scalar ones.
-    static void set_up_geometry(GatheredTriangle& t, const geometry::ShadedVertex* const (&corner)[3],
-                                const Material* material) {
-        t.material = material;
+    static void set_up_geometry(GatheredTriangle& t, const geometry::ShadedVertex* const (&corner)[3]) {
         const Float4 w = {corner[0]->clip_pos.w, corner[1]->clip_pos.w, corner[2]->clip_pos.w, 1.0f};
         const Float4 inv_w = Float4{1.0f, 1.0f, 1.0f, 1.0f} / w;
         static_assert(sizeof t.inv_w == sizeof inv_w);
@@ -371,13 +385,13 @@ private:
     // extras, or both. Returns the run's key (its material's address).
     [[gnu::noinline]] std::uintptr_t change_run_or_add_extras(std::size_t i, std::size_t entry, float b1, float b2) {
         const GatheredTriangle& t = table_.entry[entry];
-        if (runs_.empty() || runs_.back().material != t.material) {
+        if (runs_.empty() || runs_.back().material != t.material()) {
             if (!runs_.empty()) end_run(i);
             material_filled_ = i;
-            detail::push_run(runs_, {std::uint32_t(i), 0, t.material, t.textured, true});
+            detail::push_run(runs_, {std::uint32_t(i), 0, t.material(), t.textured, true});
         }
         if (t.beyond_plain) add_extras_at(i, entry, b1, b2);
-        return reinterpret_cast<std::uintptr_t>(t.material);
+        return reinterpret_cast<std::uintptr_t>(t.material());
     }
 
     // Fragment i is textured, vertex-coloured or blended: its run is not plain;
