@@ -34,7 +34,7 @@ struct TriangleCorners {
 // The fast gather's per-tile table of the triangles it has met: each set up
 // once per tile (its corners looked up, 1/w and the differences worked out),
 // though the tile's rows meet it several times. Direct-mapped on the id; a
-// tile starts with no valid entry (an epoch in each tag).
+// tile starts with no valid entry (every slot's triangle kNoTriangle, 4 KB to clear).
 //
 // A vec3 is kept as (x, y, z, 0) in a 4-float vector (GCC's vector extension,
 // one SSE register): its lane-wise IEEE operations give glm's bits per
@@ -63,15 +63,17 @@ struct GatheredTriangleExtras {
 };
 struct TriangleTable {
     static constexpr std::size_t kSize = 512;
-    std::vector<std::uint64_t> tag;  // per slot: epoch << 32 | triangle id
-    std::vector<std::uint32_t> entry_of_slot;  // per slot: the entry of its triangle, in bytes from the first
+    struct Slot {
+        std::uint32_t triangle;  // its id, or raster::kNoTriangle
+        std::uint32_t entry;     // the triangle's entry, in bytes from the first
+    };
+    std::vector<Slot> slots;
     // Per set-up of a gather (at most one per fragment):
     std::vector<GatheredTriangle> entry;
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
     std::vector<std::uint32_t> new_id;  // the triangle
-    std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as entry_of_slot)
+    std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as Slot::entry)
     std::vector<std::uint32_t> slot_of_fragment;
-    std::uint32_t epoch = 0;
     // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
     // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
     static constexpr std::size_t kPackSlack = 16;
@@ -84,10 +86,9 @@ struct TriangleTable {
         for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);
         for (auto* v : {&lambda1, &lambda2}) v->resize(max_fragments + kPackSlack);
     }
-    // Forgets every entry (valid ones have this epoch).
+    // Forgets every entry (no triangle is kNoTriangle).
     void start_tile() {
-        if (tag.empty()) tag.assign(kSize, 0), entry_of_slot.assign(kSize, 0);
-        if (++epoch == 0) std::fill(tag.begin(), tag.end(), 0), epoch = 1;
+        slots.assign(kSize, {raster::kNoTriangle, 0});
     }
     static std::size_t slot(std::uint32_t id) { return (id ^ (id >> 11) ^ (id >> 17)) & (kSize - 1); }
 };

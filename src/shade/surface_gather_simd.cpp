@@ -201,12 +201,8 @@ public:
         float* const normal_z = out_.channel(C::normal_z);
         const float* const lambda1 = lambda1_;
         const float* const lambda2 = lambda2_;
-        const std::uint64_t key_base = std::uint64_t(table_.epoch) << 32;
-        std::uint64_t* const tags = table_.tag.data();
-        std::uint32_t* const entry_of_slot = table_.entry_of_slot.data();
         std::uint32_t* const entry_of_fragment = table_.entry_of_fragment.data();
         std::uint32_t* const new_ids = table_.new_id.data();
-        std::uint32_t* const slot_of_fragment = table_.slot_of_fragment.data();
         // Entries by their offset in bytes: no multiply per fragment.
         const char* const entries = reinterpret_cast<const char*>(table_.entry.data());
         const auto entry_at = [entries](std::uint32_t offset) {
@@ -223,37 +219,14 @@ public:
         std::size_t entry_count = 0;
         for (std::size_t begin = 0; begin < count; begin += kBatch) {
             const std::size_t end = std::min(count, begin + kBatch), first_new = entry_count;
-            std::size_t i = begin;
-#if defined(__AVX2__)
-            // The table slots of 8 ids at a time (TriangleTable::slot).
-            for (; i + 8 <= end; i += 8) {
-                const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i));
-                const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot_of_fragment + i),
-                                    _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
-            }
-#endif
-            for (; i < end; ++i) slot_of_fragment[i] = std::uint32_t(TriangleTable::slot(ids[i]));
-            for (i = begin; i < end; ++i) {
-                const std::uint32_t id = ids[i];
-                const std::uint32_t slot = slot_of_fragment[i];
-                const bool is_new = tags[slot] != (key_base | id);
-                tags[slot] = key_base | id;
-                new_ids[entry_count] = id;  // kept where is_new
-                // A mask, not ?:, which g++ compiles to a branch here.
-                const std::uint32_t new_mask = 0u - std::uint32_t(is_new), old_entry = entry_of_slot[slot];
-                const std::uint32_t entry = old_entry ^ ((old_entry ^ std::uint32_t(entry_count) * kEntryBytes) & new_mask);
-                entry_of_slot[slot] = entry;
-                entry_of_fragment[i] = entry;
-                entry_count += std::size_t(is_new);
-            }
+            entry_count = probe(table_, ids, begin, end, entry_count);
             for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
             // First the batch's barycentrics as vectors (the reference's
             // operations lane by lane), in a loop of their own so that the
             // divisions of several vectors overlap; then, four fragments at a
             // time, their WorldPos and Normal, transposed into the channels.
             const std::size_t fours_end = begin + (end - begin) / 4 * 4;
-            i = begin;
+            std::size_t i = begin;
 #if defined(__AVX2__)
             for (; i + 8 <= fours_end; i += 8) {
                 const GatheredTriangle* const t[8] = {
@@ -326,6 +299,47 @@ public:
     }
 
 private:
+    // Which of fragments [begin, end) meet a triangle the table lacks: each gets
+    // its triangle's entry (in bytes: entry_of_fragment), new triangles a new
+    // one, listed in new_id. Returns the new entry count. Out of line, so that
+    // the loop has the registers to itself.
+    [[gnu::noinline]] static std::size_t probe(TriangleTable& table, const std::uint32_t* ids, std::size_t begin,
+                                               std::size_t end, std::size_t entry_count) {
+        constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
+        TriangleTable::Slot* const slots = table.slots.data();
+        std::uint32_t* const entry_of_fragment = table.entry_of_fragment.data();
+        std::uint32_t* const new_ids = table.new_id.data();
+        std::uint32_t* const slot_of_fragment = table.slot_of_fragment.data();
+        std::size_t i = begin;
+#if defined(__AVX2__)
+        // The table slots of 8 ids at a time (TriangleTable::slot).
+        for (; i + 8 <= end; i += 8) {
+            const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i));
+            const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot_of_fragment + i),
+                                _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
+        }
+#endif
+        for (; i < end; ++i) slot_of_fragment[i] = std::uint32_t(TriangleTable::slot(ids[i]));
+        for (i = begin; i < end; ++i) {
+            const std::uint32_t id = ids[i];
+            TriangleTable::Slot& slot = slots[slot_of_fragment[i]];
+            new_ids[entry_count] = id;  // kept where new
+            // entry = slot.triangle != id ? the next entry : slot.entry, without a
+            // branch (which mispredicts once per triangle): g++ makes a branch of
+            // every C++ form of this select, or a mask of five more instructions.
+            std::uint32_t entry = slot.entry;
+            bool is_new;
+            asm("cmpl %[id], %[triangle]\n\tcmovne %[next], %[entry]"
+                : [entry] "+r"(entry), "=@ccne"(is_new)
+                : [id] "r"(id), [triangle] "m"(slot.triangle), [next] "r"(std::uint32_t(entry_count) * kEntryBytes));
+            slot.triangle = id, slot.entry = entry;
+            entry_of_fragment[i] = entry;
+            entry_count += std::size_t(is_new);
+        }
+        return entry_count;
+    }
+
     // Sets up triangle `id` in table entry `entry`, as SurfaceGather::add sets up
     // its cached triangle, operation for operation: from its chunk's plain
     // arrays, the full TriangleCorners only beyond plain.
