@@ -208,7 +208,6 @@ public:
         const auto entry_at = [entries](std::uint32_t offset) {
             return reinterpret_cast<const GatheredTriangle*>(entries + offset);
         };
-        constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
         std::uintptr_t run_key = 0;  // the current run's material (no run yet: none)
         alignas(32) float batch_b1[kBatch], batch_b2[kBatch];  // perspective barycentrics of a batch's vectors
         // In batches, each in three loops, so that no branch depends on whether
@@ -243,10 +242,8 @@ public:
                 perspective_barycentrics4(t, lambda1 + i, lambda2 + i, &batch_b1[i - begin], &batch_b2[i - begin]);
             }
             for (i = begin; i < fours_end; i += 4) {
-                const std::uint32_t entry[4] = {entry_of_fragment[i], entry_of_fragment[i + 1],
-                                                entry_of_fragment[i + 2], entry_of_fragment[i + 3]};
-                const GatheredTriangle* const t[4] = {entry_at(entry[0]), entry_at(entry[1]), entry_at(entry[2]),
-                                                      entry_at(entry[3])};
+                const GatheredTriangle* const t[4] = {entry_at(entry_of_fragment[i]), entry_at(entry_of_fragment[i + 1]),
+                                                      entry_at(entry_of_fragment[i + 2]), entry_at(entry_of_fragment[i + 3])};
                 const float* const b1 = &batch_b1[i - begin];
                 const float* const b2 = &batch_b2[i - begin];
 #if defined(__AVX2__)
@@ -279,10 +276,9 @@ public:
 #endif
                 for (int k = 0; k < 4; ++k)
                     if (t[k]->run_key != run_key) [[unlikely]]
-                        run_key = change_run_or_add_extras(i + k, entry[k] / kEntryBytes, b1[k], b2[k]);
+                        run_key = change_run_or_add_extras(i + k, *t[k], b1[k], b2[k]);
             }
             for (; i < end; ++i) {
-                const std::size_t entry = entry_of_fragment[i] / kEntryBytes;
                 const GatheredTriangle& t = *entry_at(entry_of_fragment[i]);
                 const auto [b1, b2] = raster::perspective_barycentrics(t.inv_w.lanes, lambda1[i], lambda2[i]);
                 const Float4 world = t.world0 + b1 * t.world_d1 + b2 * t.world_d2;
@@ -290,7 +286,7 @@ public:
                 world_x[i] = world[0], world_y[i] = world[1], world_z[i] = world[2];
                 normal_x[i] = normal[0], normal_y[i] = normal[1], normal_z[i] = normal[2];
                 if (t.run_key != run_key) [[unlikely]]
-                    run_key = change_run_or_add_extras(i, entry, b1, b2);
+                    run_key = change_run_or_add_extras(i, t, b1, b2);
             }
         }
         if (!runs_.empty()) end_run(count);
@@ -397,14 +393,14 @@ private:
     // Fragment i (at perspective-correct b1 b2) is of another material than
     // the run's, or beyond plain: a new run begins at it, or it gets its
     // extras, or both. Returns the run's key (its material's address).
-    [[gnu::noinline]] std::uintptr_t change_run_or_add_extras(std::size_t i, std::size_t entry, float b1, float b2) {
-        const GatheredTriangle& t = table_.entry[entry];
+    [[gnu::noinline]] std::uintptr_t change_run_or_add_extras(std::size_t i, const GatheredTriangle& t, float b1,
+                                                              float b2) {
         if (runs_.empty() || runs_.back().material != t.material()) {
             if (!runs_.empty()) end_run(i);
             material_filled_ = i;
             detail::push_run(runs_, {std::uint32_t(i), 0, t.material(), t.textured, true});
         }
-        if (t.beyond_plain) add_extras_at(i, entry, b1, b2);
+        if (t.beyond_plain) add_extras_at(i, std::size_t(&t - table_.entry.data()), b1, b2);
         return reinterpret_cast<std::uintptr_t>(t.material());
     }
 
