@@ -73,7 +73,9 @@ struct TriangleTable {
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
     std::vector<std::uint32_t> new_id;  // the triangle
     std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as Slot::entry)
-    std::vector<std::uint32_t> slot_of_fragment;
+    // Per fragment of a batch: the first fragment of each row of fragments of one triangle (a head).
+    std::vector<std::uint32_t> head_of_fragment;  // its head's index among the batch's heads
+    std::vector<std::uint32_t> head_id, head_slot, head_entry;  // per head
     // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
     // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
     static constexpr std::size_t kPackSlack = 16;
@@ -82,7 +84,8 @@ struct TriangleTable {
 
     void reserve(std::size_t max_fragments) {
         entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
-        entry_of_fragment.resize(max_fragments + kPackSlack), slot_of_fragment.resize(max_fragments + kPackSlack);
+        entry_of_fragment.resize(max_fragments + kPackSlack), head_of_fragment.resize(max_fragments + kPackSlack);
+        for (auto* v : {&head_id, &head_slot, &head_entry}) v->resize(max_fragments + kPackSlack);
         for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);
         for (auto* v : {&lambda1, &lambda2}) v->resize(max_fragments + kPackSlack);
     }

@@ -298,41 +298,61 @@ private:
     // Which of fragments [begin, end) meet a triangle the table lacks: each gets
     // its triangle's entry (in bytes: entry_of_fragment), new triangles a new
     // one, listed in new_id. Returns the new entry count. Out of line, so that
-    // the loop has the registers to itself.
+    // the loops have the registers to themselves.
+    //
+    // Fragments in a row mostly share a triangle: only the first of such a run
+    // (its head) probes the table, so that consecutive probes seldom meet the
+    // same slot. A probe right after one that wrote the same slot waits for
+    // that store (~6 cycles of store forwarding, on the spheres at 4K most
+    // fragments), where probes of different slots overlap.
     [[gnu::noinline]] static std::size_t probe(TriangleTable& table, const std::uint32_t* ids, std::size_t begin,
                                                std::size_t end, std::size_t entry_count) {
         constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
         TriangleTable::Slot* const slots = table.slots.data();
         std::uint32_t* const entry_of_fragment = table.entry_of_fragment.data();
         std::uint32_t* const new_ids = table.new_id.data();
-        std::uint32_t* const slot_of_fragment = table.slot_of_fragment.data();
-        std::size_t i = begin;
+        std::uint32_t* const head_of_fragment = table.head_of_fragment.data();
+        std::uint32_t* const head_id = table.head_id.data();
+        std::uint32_t* const head_slot = table.head_slot.data();
+        std::uint32_t* const head_entry = table.head_entry.data();
+        // The heads, without a branch.
+        std::size_t heads = 0;
+        std::uint32_t previous = ~ids[begin];
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::uint32_t id = ids[i];
+            head_id[heads] = id;  // kept where a head
+            heads += std::size_t(id != previous);
+            head_of_fragment[i] = std::uint32_t(heads - 1);
+            previous = id;
+        }
+        std::size_t h = 0;
 #if defined(__AVX2__)
-        // The table slots of 8 ids at a time (TriangleTable::slot).
-        for (; i + 8 <= end; i += 8) {
-            const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i));
+        // Their table slots, 8 at a time (TriangleTable::slot).
+        for (; h + 8 <= heads; h += 8) {
+            const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_id + h));
             const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot_of_fragment + i),
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(head_slot + h),
                                 _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
         }
 #endif
-        for (; i < end; ++i) slot_of_fragment[i] = std::uint32_t(TriangleTable::slot(ids[i]));
-        for (i = begin; i < end; ++i) {
-            const std::uint32_t id = ids[i];
-            TriangleTable::Slot& slot = slots[slot_of_fragment[i]];
+        for (; h < heads; ++h) head_slot[h] = std::uint32_t(TriangleTable::slot(head_id[h]));
+        for (h = 0; h < heads; ++h) {
+            const std::uint32_t id = head_id[h];
+            TriangleTable::Slot& slot = slots[head_slot[h]];
             new_ids[entry_count] = id;  // kept where new
-            // entry = slot.triangle != id ? the next entry : slot.entry, without a
-            // branch (which mispredicts once per triangle): g++ makes a branch of
-            // every C++ form of this select, or a mask of five more instructions.
+            // entry = slot.triangle != id ? the next entry : slot.entry, without
+            // a branch (which would mispredict once per triangle): g++ makes a
+            // branch of every C++ form of this select, hence the asm.
             std::uint32_t entry = slot.entry;
             bool is_new;
             asm("cmpl %[id], %[triangle]\n\tcmovne %[next], %[entry]"
                 : [entry] "+r"(entry), "=@ccne"(is_new)
                 : [id] "r"(id), [triangle] "m"(slot.triangle), [next] "r"(std::uint32_t(entry_count) * kEntryBytes));
             slot.triangle = id, slot.entry = entry;
-            entry_of_fragment[i] = entry;
+            head_entry[h] = entry;
             entry_count += std::size_t(is_new);
         }
+        for (std::size_t i = begin; i < end; ++i) entry_of_fragment[i] = head_entry[head_of_fragment[i]];
         return entry_count;
     }
 
