@@ -22,6 +22,8 @@
 //  - the table is probed for a batch of fragments without a branch, then the
 //    batch's new triangles are set up, then its fragments gathered: the
 //    probe's miss (once per triangle of the tile) is no mispredicted branch;
+//    only the first of a row of fragments of one triangle probes, so that a
+//    probe seldom waits for the store of the one before;
 //  - the perspective barycentrics of 4 (AVX2: 8) fragments as one vector;
 //    WorldPos and Normal as 4-float vectors (AVX2: both in one 8-float
 //    vector) transposed into the channels; the same IEEE operations per lane
