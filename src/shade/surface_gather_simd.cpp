@@ -77,6 +77,14 @@ constexpr auto kPackLanes8 = [] {
     return table;
 }();
 alignas(32) constexpr auto kPackLanes8Aligned = kPackLanes8;
+// For each 8-bit mask, per lane the count of set bits up to and including it.
+constexpr auto kInclusiveCounts8 = [] {
+    std::array<std::array<std::uint32_t, 8>, 256> table{};
+    for (int mask = 0; mask < 256; ++mask)
+        for (int lane = 0, count = 0; lane < 8; ++lane) table[mask][lane] = std::uint32_t(count += (mask >> lane) & 1);
+    return table;
+}();
+alignas(32) constexpr auto kInclusiveCounts8Aligned = kInclusiveCounts8;
 #endif
 
 // Packs a tile's covered pixels in the reference's order (rows, then x) into
@@ -316,9 +324,30 @@ private:
         std::uint32_t* const head_slot = table.head_slot.data();
         std::uint32_t* const head_entry = table.head_entry.data();
         // The heads, without a branch.
-        std::size_t heads = 0;
+        std::size_t heads = 0, i = begin;
         std::uint32_t previous = ~ids[begin];
-        for (std::size_t i = begin; i < end; ++i) {
+#if defined(__AVX2__)
+        // Eight fragments at a time: those whose id differs from the one
+        // before, their ids packed to the front (a table on the compare's mask).
+        if (end - begin > 8) {
+            head_id[0] = ids[begin], head_of_fragment[begin] = 0, heads = 1;
+            for (i = begin + 1; i + 8 <= end; i += 8) {
+                const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i));
+                const __m256i before = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + i - 1));
+                const int mask = ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(id, before))) & 0xff;
+                const __m256i lanes =
+                    _mm256_load_si256(reinterpret_cast<const __m256i*>(kPackLanes8Aligned[mask].data()));
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(head_id + heads), _mm256_permutevar8x32_epi32(id, lanes));
+                const __m256i counts =
+                    _mm256_load_si256(reinterpret_cast<const __m256i*>(kInclusiveCounts8Aligned[mask].data()));
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(head_of_fragment + i),
+                                    _mm256_add_epi32(counts, _mm256_set1_epi32(int(heads) - 1)));
+                heads += std::size_t(__builtin_popcount(unsigned(mask)));
+            }
+            previous = ids[i - 1];
+        }
+#endif
+        for (; i < end; ++i) {
             const std::uint32_t id = ids[i];
             head_id[heads] = id;  // kept where a head
             heads += std::size_t(id != previous);
@@ -352,7 +381,15 @@ private:
             head_entry[h] = entry;
             entry_count += std::size_t(is_new);
         }
-        for (std::size_t i = begin; i < end; ++i) entry_of_fragment[i] = head_entry[head_of_fragment[i]];
+        i = begin;
+#if defined(__AVX2__)
+        for (; i + 8 <= end; i += 8) {
+            const __m256i head = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_of_fragment + i));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(entry_of_fragment + i),
+                                _mm256_i32gather_epi32(reinterpret_cast<const int*>(head_entry), head, 4));
+        }
+#endif
+        for (; i < end; ++i) entry_of_fragment[i] = head_entry[head_of_fragment[i]];
         return entry_count;
     }
 
