@@ -237,19 +237,23 @@ struct Renderer::Frame {
                            bool blended);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
-    // What the fast gather's set-up needs first (corners_of only where beyond plain).
-    shade::PlainCorners plain_corners_of(std::uint32_t id) const {
-        const render::Chunk& chunk = chunks[id >> render::kChunkIdShift];
-        const raster::RasterTriangle& t = chunk.assembled.triangles[id & render::kChunkIndexMask];
-        return {{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
-                 &chunk.vertex(t.vertex[2], vertices)},
-                chunk.material,
-                chunk.beyond_plain};
-    }
-    // The gathers' lookup: the fast gather's two forms, the reference's corners_of.
-    auto corner_lookup(const Scene& scene) const {
-        return shade::SplitCornerLookup{[this](std::uint32_t id) { return plain_corners_of(id); },
-                                        [this, &scene](std::uint32_t id) { return corners_of(scene, id); }};
+    // The gathers' lookup (set by render_tiles): the chunks' triangles, corners
+    // and materials as plain arrays, corners_of through `full`.
+    std::vector<shade::GatherChunk> gather_chunks;  // per chunk
+    const Scene* gathered_scene = nullptr;
+    shade::GatherCornerLookup corner_lookup;
+    void set_corner_lookup(const Scene& scene) {
+        gather_chunks.clear();
+        for (std::size_t c = 0; c < chunk_count; ++c)
+            gather_chunks.push_back({chunks[c].assembled.triangles.data(), chunks[c].assembled.clipped_vertices.data(),
+                                     chunks[c].material, chunks[c].beyond_plain});
+        gathered_scene = &scene;
+        corner_lookup = {vertices.data(), gather_chunks.data(), render::kChunkIdShift,
+                         [](const void* frame, std::uint32_t id) {
+                             const Frame& f = *static_cast<const Frame*>(frame);
+                             return f.corners_of(*f.gathered_scene, id);
+                         },
+                         this};
     }
     const raster::RasterTriangle& triangle_of(std::uint32_t id) const {
         return chunks[id >> render::kChunkIdShift].assembled.triangles[id & render::kChunkIndexMask];
@@ -457,6 +461,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     for (WorkerScratch& s : scratch) s.light_culling.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = s.fragment_lights = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
+    set_corner_lookup(scene);
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
         WorkerScratch& s = scratch.local();
@@ -561,7 +566,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
         scene, clear, tile, drawn, t0, s,
         [&] {  // every visible pixel once
             return shade::gather_surface_points(
-                isa, s.raster, rect.width(), rect.height(), corner_lookup(scene),
+                isa, s.raster, rect.width(), rect.height(), corner_lookup,
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -593,7 +598,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 return triangle_of(id);
             }, s.sample_fragments);
             return shade::gather_surface_points(
-                isa, s.sample_fragments, corner_lookup(scene), s.fragments,
+                isa, s.sample_fragments, corner_lookup, s.fragments,
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
@@ -678,7 +683,7 @@ void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& c
     raster::BlendFragments& fragments = s.blend_fragments;
     const auto shade_and_blend = [&] {
         const std::size_t count = shade::gather_surface_points(
-            isa, fragments.fragments, corner_lookup(scene), s.fragments, s.material_runs);
+            isa, fragments.fragments, corner_lookup, s.fragments, s.material_runs);
         shade_tile(scene, count, s);
         image::blend_over(fragments, count, s.fragments.outputs(), s.fragments.channel(shade::FragmentBuffer::alpha),
                           s.blend_radiance);

@@ -34,7 +34,7 @@ struct TriangleCorners {
 // The fast gather's per-tile table of the triangles it has met: each set up
 // once per tile (its corners looked up, 1/w and the differences worked out),
 // though the tile's rows meet it several times. Direct-mapped on the id; a
-// tile starts with no valid entry (an epoch in each tag).
+// tile starts with no valid entry (every slot's triangle kNoTriangle, 4 KB to clear).
 //
 // A vec3 is kept as (x, y, z, 0) in a 4-float vector (GCC's vector extension,
 // one SSE register): its lane-wise IEEE operations give glm's bits per
@@ -43,39 +43,55 @@ using Float4 = float __attribute__((vector_size(16)));
 inline Float4 float4_from(const glm::vec3& v) { return Float4{v.x, v.y, v.z, 0.0f}; }
 inline glm::vec3 vec3_from(const Float4& v) { return {v[0], v[1], v[2]}; }
 struct alignas(64) GatheredTriangle {
-    Float4 world0, world_d1, world_d2, normal0, normal_d1, normal_d2;
+    // WorldPos and Normal side by side, so that AVX2 takes a pair as one 8-float vector.
+    Float4 world0, normal0, world_d1, normal_d1, world_d2, normal_d2;
     // 1/w of the corners, and a spare float: the set-up stores the four lanes of a vector.
     struct alignas(16) InvW {
         std::array<float, 3> lanes;
         float spare;
     } inv_w;
-    const Material* material;
+    // The material's address, its lowest bit set where beyond_plain: a fragment
+    // needs the out-of-line path (new run, extras) unless this equals its run's material.
+    std::uintptr_t run_key;
     bool textured, beyond_plain;  // beyond_plain: textured, vertex-coloured or blended (scalar extras per fragment)
+    const Material* material() const { return reinterpret_cast<const Material*>(run_key & ~std::uintptr_t(1)); }
 };
+static_assert(sizeof(GatheredTriangle) == 128, "two cache lines; entries are addressed by a shift");
 struct GatheredTriangleExtras {
     TriangleCorners corners;
     glm::vec2 uv0, uv_d1, uv_d2;
 };
 struct TriangleTable {
     static constexpr std::size_t kSize = 512;
-    std::vector<std::uint64_t> tag;  // per slot: epoch << 32 | triangle id
-    std::vector<std::uint32_t> entry_of_slot;  // per slot: the entry of its triangle
+    struct Slot {
+        std::uint32_t triangle;  // its id, or raster::kNoTriangle
+        std::uint32_t entry;     // the triangle's entry, in bytes from the first
+    };
+    std::vector<Slot> slots;
     // Per set-up of a gather (at most one per fragment):
     std::vector<GatheredTriangle> entry;
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
     std::vector<std::uint32_t> new_id;  // the triangle
-    std::vector<std::uint32_t> entry_of_fragment;
-    std::uint32_t epoch = 0;
-    std::vector<std::uint32_t> pixels;  // the covered pixels of a one-sample tile
+    std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as Slot::entry)
+    // Per fragment of a batch: the first fragment of each row of fragments of one triangle (a head).
+    std::vector<std::uint32_t> head_of_fragment;  // its head's index among the batch's heads
+    std::vector<std::uint32_t> head_id, head_slot, head_entry;  // per head
+    // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
+    // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
+    static constexpr std::size_t kPackSlack = 16;
+    std::vector<std::uint32_t> pixels, ids;
+    std::vector<float> lambda1, lambda2;
 
     void reserve(std::size_t max_fragments) {
         entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
-        entry_of_fragment.resize(max_fragments), pixels.resize(max_fragments);
+        entry_of_fragment.resize(max_fragments + kPackSlack), head_of_fragment.resize(max_fragments + kPackSlack);
+        for (auto* v : {&head_id, &head_slot, &head_entry}) v->resize(max_fragments + kPackSlack);
+        for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);
+        for (auto* v : {&lambda1, &lambda2}) v->resize(max_fragments + kPackSlack);
     }
-    // Forgets every entry (valid ones have this epoch).
+    // Forgets every entry (no triangle is kNoTriangle).
     void start_tile() {
-        if (tag.empty()) tag.assign(kSize, 0), entry_of_slot.assign(kSize, 0);
-        if (++epoch == 0) std::fill(tag.begin(), tag.end(), 0), epoch = 1;
+        slots.assign(kSize, {raster::kNoTriangle, 0});
     }
     static std::size_t slot(std::uint32_t id) { return (id ^ (id >> 11) ^ (id >> 17)) & (kSize - 1); }
 };

@@ -1,9 +1,10 @@
 // The fast gather (surface_gather_fast.hpp: per-tile triangle table, materials
-// per run) against the reference gather: bit-identical fragments and the same
-// material runs, on random tiles and fragment lists (4× MSAA, blending) with
-// plain, textured, vertex-coloured and blended materials, with triangle ids
-// that collide in the table; with a lookup of TriangleCorners and with a
-// SplitCornerLookup (plain corners, the full ones only beyond plain).
+// per run; its loops compiled per ISA) against the reference gather:
+// bit-identical fragments and the same material runs, for every ISA the CPU
+// has, on random tiles and fragment lists (4× MSAA, blending) with plain,
+// textured, vertex-coloured and blended materials, corners clipping made, and
+// triangle ids that collide in the table; the full TriangleCorners asked for
+// beyond-plain triangles only.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -23,33 +24,55 @@ namespace {
 using namespace tessera;
 using namespace tessera::shade;
 
-// Any ISA but scalar runs the fast gather (plain C++, the same for every ISA).
-constexpr Isa kFast = Isa::avx2;
 constexpr float kUnwritten = -777.25f;  // every channel starts so in both buffers
 
-// A random mesh's worth of shaded vertices, materials and triangles, and the
-// lookup the renderer would give the gather.
+// The fast gathers this CPU runs (the others are skipped, and said so).
+std::vector<Isa> fast_isas() {
+    std::vector<Isa> isas;
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (simd::isa_supported(isa)) isas.push_back(isa);
+        else MESSAGE("skipped: this CPU lacks ", simd::isa_name(isa));
+    }
+    REQUIRE(!isas.empty());
+    return isas;
+}
+
+// A random mesh's worth of shaded vertices, materials and triangles in chunks
+// (one material each, as the renderer's objects), and the lookup the renderer
+// would give the gather.
 struct RandomScene {
+    static constexpr std::uint32_t kChunks = 10, kChunkShift = 17, kChunkTriangles = 1200;
     std::vector<geometry::ShadedVertex> vertices;
     std::vector<glm::vec4> tangents, colors;
     std::vector<Material> materials;
-    struct Triangle {
-        std::array<std::uint32_t, 3> corner;
+    struct Chunk {
+        std::vector<raster::RasterTriangle> triangles;  // only `vertex` is read
+        std::vector<geometry::ShadedVertex> clipped_vertices;
         std::uint32_t material;
-        bool tangents, colors;
+        bool colors;
+    };
+    std::vector<Chunk> chunks;
+    std::vector<GatherChunk> gather_chunks;
+    struct Triangle {
+        std::uint32_t id;
+        bool tangents;
         float lambda_d[4];
     };
     std::vector<Triangle> triangles;
+    mutable std::size_t full_asked = 0, full_asked_for_plain = 0;
 
     explicit RandomScene(std::mt19937& rng) {
         std::uniform_real_distribution<float> coord(-20.0f, 20.0f), unit(0.0f, 1.0f), w(0.2f, 60.0f);
-        for (int i = 0; i < 300; ++i) {
+        const auto random_vertex = [&] {
             geometry::ShadedVertex v;
             v.clip_pos = {coord(rng), coord(rng), coord(rng), w(rng)};
             v.world_pos = {coord(rng), coord(rng), coord(rng)};
             v.normal = {coord(rng), coord(rng), coord(rng)};
             v.uv = {coord(rng), coord(rng)};
-            vertices.push_back(v);
+            return v;
+        };
+        for (int i = 0; i < 300; ++i) {
+            vertices.push_back(random_vertex());
             tangents.push_back({unit(rng), unit(rng), unit(rng), unit(rng) < 0.5f ? -1.0f : 1.0f});
             colors.push_back({unit(rng), unit(rng), unit(rng), unit(rng)});
         }
@@ -61,48 +84,74 @@ struct RandomScene {
         Material textured_blended = textured;
         textured_blended.alpha_mode = AlphaMode::blend, textured_blended.alpha_factor = 0.25f;
         materials = {plain_a, plain_b, textured, blended, textured_blended};
-        std::uniform_int_distribution<std::uint32_t> vertex(0, std::uint32_t(vertices.size() - 1)),
-            material(0, std::uint32_t(materials.size() - 1));
+        // Chunks 0-4: each material without vertex colours; 5-9: with them.
+        for (std::uint32_t c = 0; c < kChunks; ++c) {
+            Chunk chunk{std::vector<raster::RasterTriangle>(kChunkTriangles), {}, c % 5, c >= 5};
+            for (int k = 0; k < 20; ++k) chunk.clipped_vertices.push_back(random_vertex());
+            chunks.push_back(std::move(chunk));
+        }
+        std::uniform_int_distribution<std::uint32_t> vertex(0, std::uint32_t(vertices.size() - 1)), clipped(0, 19);
         std::uniform_real_distribution<float> step(-0.5f, 0.5f);
-        for (int i = 0; i < 400; ++i) {
-            triangles.push_back({{vertex(rng), vertex(rng), vertex(rng)}, material(rng), unit(rng) < 0.5f,
-                                 unit(rng) < 0.3f, {step(rng), step(rng), step(rng), step(rng)}});
+        for (std::uint32_t i = 0; i < 400; ++i) {
+            const std::uint32_t id = id_of(i);
+            raster::RasterTriangle& t = chunks[id >> kChunkShift].triangles[id & ((1u << kChunkShift) - 1)];
+            for (int k = 0; k < 3; ++k)
+                t.vertex[k] = unit(rng) < 0.15f ? (geometry::kClippedVertexBit | clipped(rng)) : vertex(rng);
+            triangles.push_back({id, unit(rng) < 0.5f, {step(rng), step(rng), step(rng), step(rng)}});
+        }
+        for (const Chunk& chunk : chunks) {
+            const Material& m = materials[chunk.material];
+            gather_chunks.push_back({chunk.triangles.data(), chunk.clipped_vertices.data(), &m,
+                                     m.has_maps() || chunk.colors || m.alpha_mode == AlphaMode::blend});
         }
     }
 
     // Triangle i's id, as the renderer's: chunk << 17 | index, spread so that
     // several ids share a slot of the fast gather's table.
-    static std::uint32_t id_of(std::uint32_t i) { return ((i % 4) << 17) | ((i / 4) * 29 % 5000); }
-    std::uint32_t index_of(std::uint32_t id) const {
-        for (std::uint32_t i = 0; i < triangles.size(); ++i)
-            if (id_of(i) == id) return i;
+    static std::uint32_t id_of(std::uint32_t i) { return ((i % kChunks) << kChunkShift) | ((i / kChunks) * 29 % kChunkTriangles); }
+    const Triangle& triangle(std::uint32_t id) const {
+        for (const Triangle& t : triangles)
+            if (t.id == id) return t;
         throw std::out_of_range("no triangle " + std::to_string(id));
+    }
+    const Chunk& chunk_of(std::uint32_t id) const { return chunks.at(id >> kChunkShift); }
+    std::uint32_t corner_ref(std::uint32_t id, int k) const {
+        return chunk_of(id).triangles.at(id & ((1u << kChunkShift) - 1)).vertex[k];
+    }
+    const geometry::ShadedVertex* corner(std::uint32_t id, int k) const {
+        const std::uint32_t ref = corner_ref(id, k);
+        return (ref & geometry::kClippedVertexBit) ? &chunk_of(id).clipped_vertices.at(ref & ~geometry::kClippedVertexBit)
+                                                   : &vertices.at(ref);
     }
 
     TriangleCorners corners(std::uint32_t id) const {
-        const Triangle& t = triangles.at(index_of(id));
-        TriangleCorners c{{&vertices[t.corner[0]], &vertices[t.corner[1]], &vertices[t.corner[2]]},
-                          &materials[t.material]};
+        const Triangle& t = triangle(id);
+        const Chunk& chunk = chunk_of(id);
+        TriangleCorners c{{corner(id, 0), corner(id, 1), corner(id, 2)}, &materials[chunk.material]};
+        const auto attribute_index = [&](int k) { return (corner_ref(id, k) & ~geometry::kClippedVertexBit) % 300; };
         if (c.material->has_maps()) {
             c.lambda1_dx = t.lambda_d[0], c.lambda1_dy = t.lambda_d[1];
             c.lambda2_dx = t.lambda_d[2], c.lambda2_dy = t.lambda_d[3];
             if (t.tangents)
-                for (int k = 0; k < 3; ++k) c.tangent[k] = &tangents[t.corner[k]];
+                for (int k = 0; k < 3; ++k) c.tangent[k] = &tangents[attribute_index(k)];
         }
-        if (t.colors)
-            for (int k = 0; k < 3; ++k) c.color[k] = &colors[t.corner[k]];
+        if (chunk.colors)
+            for (int k = 0; k < 3; ++k) c.color[k] = &colors[attribute_index(k)];
         return c;
     }
+    bool beyond_plain(std::uint32_t id) const { return gather_chunks.at(id >> kChunkShift).beyond_plain; }
 
-    // The plain form of a SplitCornerLookup, as the renderer's (beyond_plain per object there).
-    PlainCorners plain(std::uint32_t id) const {
-        const Triangle& t = triangles.at(index_of(id));
-        const Material& m = materials[t.material];
-        return {{&vertices[t.corner[0]], &vertices[t.corner[1]], &vertices[t.corner[2]]},
-                &m,
-                m.has_maps() || t.colors || m.alpha_mode == AlphaMode::blend};
+    // The lookup, as the renderer's: counts the full corners it is asked for.
+    GatherCornerLookup lookup() const {
+        return {vertices.data(), gather_chunks.data(), int(kChunkShift),
+                [](const void* context, std::uint32_t id) {
+                    const RandomScene& scene = *static_cast<const RandomScene*>(context);
+                    ++scene.full_asked;
+                    scene.full_asked_for_plain += scene.beyond_plain(id) ? 0 : 1;
+                    return scene.corners(id);
+                },
+                this};
     }
-    bool beyond_plain(std::uint32_t id) const { return plain(id).beyond_plain; }
 };
 
 // A triangle id per fragment, in runs as a rasterized tile has them: the
@@ -172,14 +221,9 @@ void check_same_fragments(std::size_t count, const FragmentBuffer& reference, co
 TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
     std::mt19937 rng(20261124);
     const RandomScene scene(rng);
-    const auto lookup = [&](std::uint32_t id) { return scene.corners(id); };
+    const GatherCornerLookup lookup = scene.lookup();
+    const std::vector<Isa> isas = fast_isas();
     std::size_t full_asked = 0, full_asked_for_plain = 0;
-    const SplitCornerLookup split_lookup{[&](std::uint32_t id) { return scene.plain(id); },
-                                         [&](std::uint32_t id) {
-                                             ++full_asked;
-                                             full_asked_for_plain += scene.beyond_plain(id) ? 0 : 1;
-                                             return scene.corners(id);
-                                         }};
     constexpr int kSide = 32;
     FragmentBuffer reference, fast;
     reference.reserve(kSide * kSide), fast.reserve(kSide * kSide);
@@ -208,15 +252,14 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
             if (run.textured || run.material->alpha_mode == AlphaMode::blend) extras += run.end - run.begin;
             materials_seen |= std::size_t(1) << (run.material - scene.materials.data());
         }
-        fill_unwritten(fast);
-        const std::size_t fast_count =
-            gather_surface_points(kFast, tile, width, height, lookup, fast, fast_runs);
-        check_same_fragments(count, reference, reference_runs, fast_count, fast, fast_runs);
-        // The lookup in two forms: the same bits, the full form asked for beyond-plain triangles only.
-        fill_unwritten(fast);
-        const std::size_t split_count =
-            gather_surface_points(kFast, tile, width, height, split_lookup, fast, fast_runs);
-        check_same_fragments(count, reference, reference_runs, split_count, fast, fast_runs);
+        for (const Isa isa : isas) {
+            CAPTURE(simd::isa_name(isa));
+            fill_unwritten(fast);
+            scene.full_asked = scene.full_asked_for_plain = 0;
+            const std::size_t fast_count = gather_surface_points(isa, tile, width, height, lookup, fast, fast_runs);
+            full_asked += scene.full_asked, full_asked_for_plain += scene.full_asked_for_plain;
+            check_same_fragments(count, reference, reference_runs, fast_count, fast, fast_runs);
+        }
     }
     CHECK(full_asked > 0);
     CHECK(full_asked_for_plain == 0);
@@ -228,9 +271,8 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
 TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the reference gather bit for bit") {
     std::mt19937 rng(4242);
     const RandomScene scene(rng);
-    const auto lookup = [&](std::uint32_t id) { return scene.corners(id); };
-    const SplitCornerLookup split_lookup{[&](std::uint32_t id) { return scene.plain(id); },
-                                         [&](std::uint32_t id) { return scene.corners(id); }};
+    const GatherCornerLookup lookup = scene.lookup();
+    const std::vector<Isa> isas = fast_isas();
     constexpr int kSide = 16;
     constexpr std::size_t kMaxFragments = 4 * kSide * kSide;
     FragmentBuffer reference, fast;
@@ -254,13 +296,12 @@ TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the refere
         const std::size_t gathered =
             gather_surface_points(Isa::scalar, list, lookup, reference, reference_runs);
         REQUIRE(gathered == count);
-        fill_unwritten(fast);
-        const std::size_t fast_count =
-            gather_surface_points(kFast, list, lookup, fast, fast_runs);
-        check_same_fragments(gathered, reference, reference_runs, fast_count, fast, fast_runs);
-        fill_unwritten(fast);
-        const std::size_t split_count = gather_surface_points(kFast, list, split_lookup, fast, fast_runs);
-        check_same_fragments(gathered, reference, reference_runs, split_count, fast, fast_runs);
+        for (const Isa isa : isas) {
+            CAPTURE(simd::isa_name(isa));
+            fill_unwritten(fast);
+            const std::size_t fast_count = gather_surface_points(isa, list, lookup, fast, fast_runs);
+            check_same_fragments(gathered, reference, reference_runs, fast_count, fast, fast_runs);
+        }
     }
 }
 
@@ -270,7 +311,9 @@ TEST_CASE("the fast gather of a fragment list (MSAA, blending) equals the refere
 TEST_CASE("the gathers interpolate perspective-correctly and apply vertex colours") {
     std::mt19937 rng(7);
     const RandomScene scene(rng);
-    const auto lookup = [&](std::uint32_t id) { return scene.corners(id); };
+    const GatherCornerLookup lookup = scene.lookup();
+    std::vector<Isa> isas = fast_isas();
+    isas.insert(isas.begin(), Isa::scalar);
     FragmentBuffer out;
     out.reserve(16);
     std::vector<MaterialRun> runs;
@@ -281,7 +324,7 @@ TEST_CASE("the gathers interpolate perspective-correctly and apply vertex colour
         list.reserve(4);
         const auto [l1, l2] = random_lambdas(rng);
         list.x = {1}, list.y = {2}, list.triangle = {id}, list.lambda1 = {l1}, list.lambda2 = {l2}, list.count = 1;
-        for (const Isa isa : {Isa::scalar, kFast}) {
+        for (const Isa isa : isas) {
             REQUIRE(gather_surface_points(isa, list, lookup, out, runs) == 1);
             const TriangleCorners c = scene.corners(id);
             const double q[3] = {(1.0 - l1 - l2) / c.corner[0]->clip_pos.w, l1 / c.corner[1]->clip_pos.w,

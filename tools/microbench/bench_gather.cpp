@@ -1,6 +1,6 @@
 // The gather: a fully covered 32×32 tile of plain (untextured) triangles into a
 // FragmentBuffer, the reference gather (scalar) against the fast one (every
-// other ISA runs the same C++, surface_gather_fast.hpp). A triangle covers a
+// other ISA runs surface_gather_fast.hpp's, compiled for it). A triangle covers a
 // block of w × h pixels, so that the tile's rows meet it h times, as a
 // rasterized triangle's rows do; its corners lie scattered through 30 000
 // vertices. Reported per fragment.
@@ -23,8 +23,9 @@ constexpr int kSide = 32;
 
 struct GatherInputs {
     std::vector<geometry::ShadedVertex> vertices;
-    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<raster::RasterTriangle> triangles;  // only the corners' vertex references are read
     Material material;
+    shade::GatherChunk chunk{};
     raster::TileBuffers tile;
 
     GatherInputs(int block_width, int block_height, std::mt19937& rng) {
@@ -39,8 +40,11 @@ struct GatherInputs {
         const int blocks_per_row = (kSide + block_width - 1) / block_width;
         for (int b = 0; b < blocks_per_row * ((kSide + block_height - 1) / block_height); ++b) {
             const std::uint32_t v = vertex(rng);
-            triangles.push_back({v, v + 1, v + 2});
+            raster::RasterTriangle t{};
+            t.vertex = {v, v + 1, v + 2};
+            triangles.push_back(t);
         }
+        chunk = {triangles.data(), nullptr, &material, false};
         tile.reset(kSide);
         for (int y = 0; y < kSide; ++y)
             for (int x = 0; x < kSide; ++x) {
@@ -52,8 +56,14 @@ struct GatherInputs {
             }
     }
     shade::TriangleCorners corners(std::uint32_t id) const {
-        const auto& t = triangles[id];
-        return {{&vertices[t[0]], &vertices[t[1]], &vertices[t[2]]}, &material};
+        const auto& v = triangles[id].vertex;
+        return {{&vertices[v[0]], &vertices[v[1]], &vertices[v[2]]}, &material};
+    }
+    // One chunk, as the renderer's lookup has them (ids below 2^17).
+    shade::GatherCornerLookup lookup() const {
+        return {vertices.data(), &chunk, 17,
+                [](const void* inputs, std::uint32_t id) { return static_cast<const GatherInputs*>(inputs)->corners(id); },
+                this};
     }
 };
 
@@ -61,13 +71,14 @@ void BM_gather(benchmark::State& state, Isa isa, int block_width, int block_heig
     if (skip_if_unsupported(state, isa)) return;
     std::mt19937 rng(kSeed);
     const GatherInputs in(block_width, block_height, rng);
+    const shade::GatherCornerLookup lookup = in.lookup();
     shade::FragmentBuffer out;
     out.reserve(kSide * kSide);
     std::vector<shade::MaterialRun> runs;
     runs.reserve(kSide * kSide);
     for (auto _ : state) {
         const std::size_t count = shade::gather_surface_points(
-            isa, in.tile, kSide, kSide, [&](std::uint32_t id) { return in.corners(id); }, out, runs);
+            isa, in.tile, kSide, kSide, lookup, out, runs);
         benchmark::DoNotOptimize(count);
         benchmark::DoNotOptimize(out.channel(shade::FragmentBuffer::world_x));
     }
