@@ -53,29 +53,24 @@ constexpr auto kPackBytes4 = [] {
     return table;
 }();
 alignas(16) constexpr auto kPackBytes4Aligned = kPackBytes4;
-// Lanes 0..3 as 32-bit integers, packed the same way: the pixel offsets.
-constexpr auto kPackLanes4 = [] {
-    std::array<std::array<std::uint32_t, 4>, 16> table{};
-    for (int mask = 0; mask < 16; ++mask) {
+// For each mask of Lanes bits, the indices of its set lanes packed to the front (the rest 0).
+template <int Lanes>
+constexpr std::array<std::array<std::uint32_t, Lanes>, (1 << Lanes)> packed_lanes() {
+    std::array<std::array<std::uint32_t, Lanes>, (1 << Lanes)> table{};
+    for (int mask = 0; mask < (1 << Lanes); ++mask) {
         int packed = 0;
-        for (int lane = 0; lane < 4; ++lane)
+        for (int lane = 0; lane < Lanes; ++lane)
             if (mask & (1 << lane)) table[mask][packed++] = std::uint32_t(lane);
     }
     return table;
-}();
+}
+// Lanes 0..3 as 32-bit integers, packed the same way: the pixel offsets.
+constexpr auto kPackLanes4 = packed_lanes<4>();
 alignas(16) constexpr auto kPackLanes4Aligned = kPackLanes4;
 
 #if defined(__AVX2__)
 // For each 8-bit mask, vpermd's lane indices that pack its set lanes to the front.
-constexpr auto kPackLanes8 = [] {
-    std::array<std::array<std::uint32_t, 8>, 256> table{};
-    for (int mask = 0; mask < 256; ++mask) {
-        int packed = 0;
-        for (int lane = 0; lane < 8; ++lane)
-            if (mask & (1 << lane)) table[mask][packed++] = std::uint32_t(lane);
-    }
-    return table;
-}();
+constexpr auto kPackLanes8 = packed_lanes<8>();
 alignas(32) constexpr auto kPackLanes8Aligned = kPackLanes8;
 // For each 8-bit mask, per lane the count of set bits up to and including it.
 constexpr auto kInclusiveCounts8 = [] {

@@ -72,12 +72,36 @@ std::vector<Placement> placements(int side) {
     return out;
 }
 
+// `count` colours from HDR blacks to well past white (red and blue), and in [0, 1] (green).
+Shaded random_colours(std::size_t count, std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-5.0f, 2.0f);
+    Shaded shaded(count);
+    for (std::size_t k = 0; k < count; ++k)
+        shaded.r[k] = std::pow(10.0f, exponent(rng)), shaded.g[k] = unit(rng), shaded.b[k] = std::pow(10.0f, exponent(rng));
+    return shaded;
+}
+
+// resolve(isa) of every SIMD ISA this CPU has against resolve(Isa::scalar),
+// which must touch nothing outside `rect`. Returns the ISAs compared.
+template <class Resolve>
+int check_every_isa_as_scalar(const Resolve& resolve, const raster::TileRect& rect) {
+    const RenderedImage reference = resolve(Isa::scalar);
+    CHECK(touched_outside(reference, rect) == 0);
+    int compared = 0;
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!simd::isa_supported(isa)) continue;
+        CAPTURE(simd::isa_name(isa));
+        CHECK(resolve(isa).display == reference.display);
+        ++compared;
+    }
+    return compared;
+}
+
 }  // namespace
 
 TEST_CASE("resolve_tile: background runs at every offset, every width and alignment, image edges: every ISA as scalar") {
     constexpr int kSide = 32;
     std::mt19937 rng(21);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-5.0f, 2.0f);
     const image::ClearValues clear = image::clear_values(glm::vec3(0.25f, 0.5f, 0.75f));
     int compared = 0, background_groups = 0;
     for (const Placement& place : placements(kSide)) {
@@ -106,24 +130,14 @@ TEST_CASE("resolve_tile: background runs at every offset, every width and alignm
                 background_groups += all_background;
             }
         }
-        Shaded input(count);
-        for (std::size_t k = 0; k < count; ++k)
-            input.r[k] = std::pow(10.0f, exponent(rng)), input.g[k] = unit(rng), input.b[k] = std::pow(10.0f, exponent(rng));
+        const Shaded input = random_colours(count, rng);
         const auto resolve = [&](Isa isa) {
             RenderedImage image = blank_image(place.image_width, place.image_height);
             Shaded shaded = input;
             image::resolve_tile(tile, rect, count, shaded.outputs(), clear, isa, image);
             return image;
         };
-        const RenderedImage reference = resolve(Isa::scalar);
-        CHECK(touched_outside(reference, rect) == 0);
-        for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
-            if (!simd::isa_supported(isa)) continue;
-            CAPTURE(simd::isa_name(isa));
-            const RenderedImage image = resolve(isa);
-            CHECK(image.display == reference.display);
-            ++compared;
-        }
+        compared += check_every_isa_as_scalar(resolve, rect);
     }
     CHECK(background_groups > 100);  // whole 8-pixel groups of background, at many offsets
     CHECK(compared > 0);
@@ -153,7 +167,7 @@ TEST_CASE("clear_tile: the clear colour over exactly the tile, at every width an
 TEST_CASE("resolve_tile_msaa: every width and alignment, image edges: every ISA as scalar") {
     constexpr int kSide = 32, n = raster::kMsaaSamples;
     std::mt19937 rng(22);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-5.0f, 2.0f);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     const image::ClearValues clear = image::clear_values(glm::vec3(0.6f, 0.3f, 0.1f));
     int compared = 0;
     for (const Placement& place : placements(kSide)) {
@@ -181,24 +195,14 @@ TEST_CASE("resolve_tile_msaa: every width and alignment, image edges: every ISA 
                 }
             }
         }
-        Shaded input(std::size_t(count) + 1);
-        for (std::size_t k = 0; k < input.r.size(); ++k)
-            input.r[k] = std::pow(10.0f, exponent(rng)), input.g[k] = unit(rng), input.b[k] = std::pow(10.0f, exponent(rng));
+        const Shaded input = random_colours(std::size_t(count) + 1, rng);
         const auto resolve = [&](Isa isa) {
             RenderedImage image = blank_image(place.image_width, place.image_height);
             Shaded shaded = input;
             image::resolve_tile_msaa(samples, rect, std::size_t(count) + 1, shaded.outputs(), clear, isa, image);
             return image;
         };
-        const RenderedImage reference = resolve(Isa::scalar);
-        CHECK(touched_outside(reference, rect) == 0);
-        for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
-            if (!simd::isa_supported(isa)) continue;
-            CAPTURE(simd::isa_name(isa));
-            const RenderedImage image = resolve(isa);
-            CHECK(image.display == reference.display);
-            ++compared;
-        }
+        compared += check_every_isa_as_scalar(resolve, rect);
     }
     CHECK(compared > 0);
 }
