@@ -36,23 +36,6 @@ static_assert(offsetof(GatheredTriangle, normal0) == offsetof(GatheredTriangle, 
                   offsetof(GatheredTriangle, normal_d2) == offsetof(GatheredTriangle, world_d2) + 16,
               "a WorldPos and its Normal side by side, one 32-byte load");
 
-// For each 4-bit mask, pshufb's byte indices that pack the 32-bit lanes of its
-// set bits to the front (the spare lanes take lane 0).
-constexpr auto kPackBytes4 = [] {
-    std::array<std::array<std::uint8_t, 16>, 16> table{};
-    for (int mask = 0; mask < 16; ++mask) {
-        int packed = 0;
-        for (int lane = 0; lane < 4; ++lane)
-            if (mask & (1 << lane)) {
-                for (int b = 0; b < 4; ++b) table[mask][4 * packed + b] = std::uint8_t(4 * lane + b);
-                ++packed;
-            }
-        for (; packed < 4; ++packed)
-            for (int b = 0; b < 4; ++b) table[mask][4 * packed + b] = std::uint8_t(b);
-    }
-    return table;
-}();
-alignas(16) constexpr auto kPackBytes4Aligned = kPackBytes4;
 // For each mask of Lanes bits, the indices of its set lanes packed to the front (the rest 0).
 template <int Lanes>
 constexpr std::array<std::array<std::uint32_t, Lanes>, (1 << Lanes)> packed_lanes() {
@@ -67,6 +50,15 @@ constexpr std::array<std::array<std::uint32_t, Lanes>, (1 << Lanes)> packed_lane
 // Lanes 0..3 as 32-bit integers, packed the same way: the pixel offsets.
 constexpr auto kPackLanes4 = packed_lanes<4>();
 alignas(16) constexpr auto kPackLanes4Aligned = kPackLanes4;
+// The same as pshufb's byte indices: lane l's four bytes 4l..4l+3.
+constexpr auto kPackBytes4 = [] {
+    std::array<std::array<std::uint8_t, 16>, 16> table{};
+    for (int mask = 0; mask < 16; ++mask)
+        for (int k = 0; k < 4; ++k)
+            for (int b = 0; b < 4; ++b) table[mask][4 * k + b] = std::uint8_t(4 * kPackLanes4[mask][k] + b);
+    return table;
+}();
+alignas(16) constexpr auto kPackBytes4Aligned = kPackBytes4;
 
 #if defined(__AVX2__)
 // For each 8-bit mask, vpermd's lane indices that pack its set lanes to the front.
