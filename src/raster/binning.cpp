@@ -31,17 +31,32 @@ void for_each_tile(const TileGrid& grid, const RasterTriangle& t, F&& f) {
 
 }  // namespace
 
+std::span<const std::uint32_t> ChunkBins::tile(int t) const {
+    const auto found = std::lower_bound(tiles.begin(), tiles.end(), std::uint32_t(t));
+    if (found == tiles.end() || *found != std::uint32_t(t)) return {};
+    return bin(std::size_t(found - tiles.begin()));
+}
+
 // Most triangles of a finely tessellated mesh lie inside one tile: the first
 // pass notes that tile, so the second reads 4 bytes of such a triangle instead
 // of its record and goes round no loop. Consecutive triangles mostly share
 // their tile: both passes keep the current run's count or cursor in a
-// register, since ++offsets[tile] one triangle after another would wait on
-// its own store each time.
+// register, since ++count[tile] one triangle after another would wait on
+// its own store each time. Only touched tiles are visited after the first
+// pass: the per-tile scratch is 0 between builds, so it is not cleared.
 void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> triangles) {
     constexpr std::uint32_t kSeveralTiles = ~std::uint32_t{0};
-    offsets.assign(std::size_t(grid.tile_count()) + 1, 0);
+    if (scratch_dirty || tile_scratch.size() != std::size_t(grid.tile_count()))
+        tile_scratch.assign(std::size_t(grid.tile_count()), 0);
+    scratch_dirty = true;
+    std::vector<std::uint32_t>& count = tile_scratch;
+    tiles.clear();
+    const auto add = [&](std::uint32_t tile, std::uint32_t n) {
+        if (count[tile] == 0) tiles.push_back(tile);
+        count[tile] += n;
+    };
     triangle_tile.resize(triangles.size());
-    std::uint32_t run_tile = 0, run_length = 0;  // consecutive one-tile triangles counted, not yet in offsets
+    std::uint32_t run_tile = 0, run_length = 0;  // consecutive one-tile triangles counted, not yet in count
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const RasterTriangle& t = triangles[i];
         const int tx0 = t.px_min >> grid.tile_shift, tx1 = t.px_max >> grid.tile_shift;
@@ -49,34 +64,43 @@ void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> tria
         if (tx0 == tx1 && ty0 == ty1) {
             const std::uint32_t tile = std::uint32_t(ty0 * grid.tiles_x + tx0);
             triangle_tile[i] = tile;
-            if (tile != run_tile) offsets[run_tile + 1] += run_length, run_tile = tile, run_length = 0;
+            if (tile != run_tile) {
+                if (run_length != 0) add(run_tile, run_length);
+                run_tile = tile, run_length = 0;
+            }
             ++run_length;
         } else {
             triangle_tile[i] = kSeveralTiles;
-            for_each_tile(grid, t, [&](int tile) { ++offsets[tile + 1]; });
+            for_each_tile(grid, t, [&](int tile) { add(std::uint32_t(tile), 1); });
         }
     }
-    offsets[run_tile + 1] += run_length;
-    for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
-    items.resize(offsets.back());
-    // Fill using offsets[t] as a cursor (the current run's held in `cursor`), then shift the cursors back.
-    std::uint32_t cursor_tile = kSeveralTiles, cursor = 0;
+    if (run_length != 0) add(run_tile, run_length);
+    std::sort(tiles.begin(), tiles.end());
+    // Counts → each touched tile's start, which count then holds as its cursor.
+    starts.resize(tiles.size() + 1);
+    starts[0] = 0;
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+        starts[i + 1] = starts[i] + count[tiles[i]];
+        count[tiles[i]] = starts[i];
+    }
+    items.resize(starts.back());
+    std::vector<std::uint32_t>& cursor = tile_scratch;
+    std::uint32_t cursor_tile = kSeveralTiles, run_cursor = 0;  // the current run's cursor, not yet in `cursor`
     for (std::uint32_t i = 0; i < triangles.size(); ++i) {
         const std::uint32_t tile = triangle_tile[i];
-        if (tile == kSeveralTiles) {  // its tiles' cursors must be in offsets
-            if (cursor_tile != kSeveralTiles) offsets[cursor_tile] = cursor, cursor_tile = kSeveralTiles;
-            for_each_tile(grid, triangles[i], [&](int several) { items[offsets[several]++] = i; });
+        if (tile == kSeveralTiles) {  // its tiles' cursors must be in `cursor`
+            if (cursor_tile != kSeveralTiles) cursor[cursor_tile] = run_cursor, cursor_tile = kSeveralTiles;
+            for_each_tile(grid, triangles[i], [&](int several) { items[cursor[several]++] = i; });
             continue;
         }
         if (tile != cursor_tile) {
-            if (cursor_tile != kSeveralTiles) offsets[cursor_tile] = cursor;
-            cursor_tile = tile, cursor = offsets[tile];
+            if (cursor_tile != kSeveralTiles) cursor[cursor_tile] = run_cursor;
+            cursor_tile = tile, run_cursor = cursor[tile];
         }
-        items[cursor++] = i;
+        items[run_cursor++] = i;
     }
-    if (cursor_tile != kSeveralTiles) offsets[cursor_tile] = cursor;
-    for (std::size_t t = offsets.size() - 1; t > 0; --t) offsets[t] = offsets[t - 1];
-    offsets[0] = 0;
+    for (const std::uint32_t tile : tiles) cursor[tile] = 0;
+    scratch_dirty = false;
 }
 
 }  // namespace tessera::raster

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <random>
+#include <tuple>
 
 #include "raster/binning.hpp"
 #include "raster_test_util.hpp"
@@ -78,5 +79,73 @@ TEST_CASE("binning equals the plain definition for runs of one-tile triangles mi
         for (int tile = 0; tile < grid.tile_count(); ++tile)
             different += std::vector<std::uint32_t>(bins.tile(tile).begin(), bins.tile(tile).end()) != expected[std::size_t(tile)];
         CHECK(different == 0);
+    }
+}
+
+// Random boxes over a grid: some triangles in one tile, some spanning several.
+static std::vector<raster::RasterTriangle> random_boxes(std::mt19937& rng, int width, int height, int count) {
+    std::uniform_int_distribution<int> x(0, width - 1), y(0, height - 1), extent(0, 40), kind(0, 2);
+    std::vector<raster::RasterTriangle> triangles;
+    for (int i = 0; i < count; ++i) {
+        raster::RasterTriangle t{};
+        const int bx = x(rng), by = y(rng), grow = kind(rng) == 0 ? extent(rng) : 0;
+        t.px_min = std::int16_t(bx), t.px_max = std::int16_t(std::min(bx + grow, width - 1));
+        t.py_min = std::int16_t(by), t.py_max = std::int16_t(std::min(by + grow / 2, height - 1));
+        triangles.push_back(t);
+    }
+    return triangles;
+}
+
+TEST_CASE("a chunk's bins list only touched tiles, ascending, and stay right when the grid changes") {
+    std::mt19937 rng(11);
+    raster::ChunkBins bins;
+    // A small grid, a larger one, the small one again: the per-tile scratch is resized and must read 0.
+    for (const auto& [width, height, side] : {std::tuple{200, 120, 16}, std::tuple{640, 360, 32}, std::tuple{200, 120, 16}}) {
+        const raster::TileGrid grid(width, height, side);
+        const std::vector<raster::RasterTriangle> triangles = random_boxes(rng, width, height, 400);
+        bins.build(grid, triangles);
+        CHECK(std::is_sorted(bins.tiles.begin(), bins.tiles.end()));
+        CHECK(std::adjacent_find(bins.tiles.begin(), bins.tiles.end()) == bins.tiles.end());
+        std::size_t listed = 0;
+        for (int tile = 0; tile < grid.tile_count(); ++tile) {
+            std::vector<std::uint32_t> expected;
+            const raster::TileRect r = grid.rect(tile);
+            for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+                const raster::RasterTriangle& t = triangles[i];
+                if (t.px_min < r.x1 && t.px_max >= r.x0 && t.py_min < r.y1 && t.py_max >= r.y0) expected.push_back(i);
+            }
+            CHECK(std::vector<std::uint32_t>(bins.tile(tile).begin(), bins.tile(tile).end()) == expected);
+            const bool touched = std::binary_search(bins.tiles.begin(), bins.tiles.end(), std::uint32_t(tile));
+            CHECK(touched == !expected.empty());
+            listed += expected.size();
+        }
+        CHECK(bins.items.size() == listed);
+        CHECK(std::all_of(bins.tile_scratch.begin(), bins.tile_scratch.end(), [](std::uint32_t v) { return v == 0; }));
+    }
+}
+
+TEST_CASE("the tile index lists, per tile, every chunk's non-empty bin in chunk order") {
+    const raster::TileGrid grid(300, 200, 32);
+    std::mt19937 rng(23);
+    std::vector<raster::ChunkBins> chunks(7);
+    for (std::size_t c = 0; c < chunks.size(); ++c)
+        chunks[c].build(grid, random_boxes(rng, 300, 200, c == 3 ? 0 : int(50 + 40 * c)));  // chunk 3 empty
+    raster::TileBinIndex index;
+    for (int build = 0; build < 2; ++build) {  // memory reused
+        index.build(grid, chunks.size(), [&](std::size_t c) -> const raster::ChunkBins& { return chunks[c]; });
+        int wrong = 0;
+        for (int tile = 0; tile < grid.tile_count(); ++tile) {
+            std::vector<std::uint32_t> expected_chunks, listed_chunks;
+            for (std::uint32_t c = 0; c < chunks.size(); ++c)
+                if (!chunks[c].tile(tile).empty()) expected_chunks.push_back(c);
+            for (const raster::TileBinIndex::Entry& e : index.tile(tile)) {
+                listed_chunks.push_back(e.chunk);
+                const std::span<const std::uint32_t> bin = chunks[e.chunk].tile(tile);
+                wrong += e.first != std::uint32_t(bin.data() - chunks[e.chunk].items.data()) ||
+                         e.last - e.first != bin.size();
+            }
+            wrong += listed_chunks != expected_chunks;
+        }
+        CHECK(wrong == 0);
     }
 }
