@@ -370,10 +370,16 @@ private:
         }
         i = begin;
 #if defined(__AVX2__)
+        // Eight fragments' heads are at most eight consecutive ones (each
+        // fragment's is its predecessor's or the next): one load from the
+        // first lane's and a permute, rather than a gather (~17 cycles on
+        // this project's AMD VMs). head_entry has kPackSlack spare lanes.
         for (; i + 8 <= end; i += 8) {
             const __m256i head = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_of_fragment + i));
+            const std::uint32_t first = std::uint32_t(_mm256_cvtsi256_si32(head));
+            const __m256i entries = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_entry + first));
             _mm256_storeu_si256(reinterpret_cast<__m256i*>(entry_of_fragment + i),
-                                _mm256_i32gather_epi32(reinterpret_cast<const int*>(head_entry), head, 4));
+                                _mm256_permutevar8x32_epi32(entries, _mm256_sub_epi32(head, _mm256_set1_epi32(int(first)))));
         }
 #endif
         for (; i < end; ++i) entry_of_fragment[i] = head_entry[head_of_fragment[i]];
