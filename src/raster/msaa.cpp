@@ -15,10 +15,19 @@ namespace tessera::raster {
 
 void TileSamples::reset(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;
-    side = tile_side;
-    depth.assign(n + kMsaaKernelOverreach, 1.0f);
-    triangle.resize(n + kMsaaKernelOverreach);
-    fragment.resize(n);
+    if (tile_side == side && depth.size() == n + kMsaaKernelOverreach) {
+        // Outside the written box depth is still 1.
+        const int x0 = std::max(written_x0, 0), x1 = std::min(written_x1, side);
+        for (int y = std::max(written_y0, 0); y < std::min(written_y1, side) && x0 < x1; ++y)
+            std::fill_n(&depth[std::size_t(kMsaaSamples) * (std::size_t(y) * side + x0)],
+                        std::size_t(kMsaaSamples) * (x1 - x0), 1.0f);
+    } else {
+        side = tile_side;
+        depth.assign(n + kMsaaKernelOverreach, 1.0f);
+        triangle.resize(n + kMsaaKernelOverreach);
+        fragment.resize(n);
+    }
+    written_x0 = written_y0 = kEmptyBoxLow, written_x1 = written_y1 = kEmptyBoxHigh;
 }
 
 void TileFragments::reserve(int tile_side) {
@@ -60,37 +69,78 @@ constexpr PixelPatterns kPixelPatterns;
 
 }  // namespace
 
+namespace {
+
+// One pixel of list_fragments(): its samples' fragments, and the new ones
+// appended to out from `count` on; returns the new count.
+[[gnu::always_inline]] inline std::size_t list_pixel(const TileSamples& samples, std::size_t first, int x, int y,
+                                                     std::int32_t* fragment_of_samples, TileFragments& out,
+                                                     std::size_t count) {
+    __m128i* fragment = reinterpret_cast<__m128i*>(fragment_of_samples);
+    const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), _mm_set1_ps(1.0f));
+    const int covered_bits = _mm_movemask_ps(covered);
+    if (covered_bits == 0) {  // background (no triangle ids to read)
+        _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
+        return count;
+    }
+    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
+    // Pairs 01 02 03 12, then 13 23.
+    const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
+    const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
+    const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
+    const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
+    const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
+                     (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
+    const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
+    // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
+    const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
+    _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
+    for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
+        const int s = std::countr_zero(firsts);
+        out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
+        out.triangle[count] = samples.triangle[first + s];
+        ++count;
+    }
+    return count;
+}
+
+// Whether any of the 4 pixels' samples from `first` on is covered.
+[[gnu::always_inline]] inline bool any_covered4(const float* depth) {
+    const __m128 one = _mm_set1_ps(1.0f);
+    const __m128 a = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 4), one));
+    const __m128 b = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth + 8), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 12), one));
+    return _mm_movemask_ps(_mm_or_ps(a, b)) != 0;
+}
+
+}  // namespace
+
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out) {
     static_assert(kMsaaSamples == 4, "a pixel's samples are one SSE vector");
-    const __m128 one = _mm_set1_ps(1.0f);
+    const int width = rect.width(), height = rect.height();
+    // Depth is 1 outside the written box: there every sample is background.
+    const int box_x0 = std::max(samples.written_x0, 0), box_x1 = std::min(samples.written_x1, width);
+    const int box_y0 = std::max(samples.written_y0, 0), box_y1 = std::min(samples.written_y1, height);
     std::size_t count = 0;
-    for (int y = 0; y < rect.height(); ++y) {
-        for (int x = 0; x < rect.width(); ++x) {
-            const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * samples.side + x);
-            __m128i* fragment = reinterpret_cast<__m128i*>(&samples.fragment[first]);
-            const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), one);
-            const int covered_bits = _mm_movemask_ps(covered);
-            if (covered_bits == 0) {  // background (no triangle ids to read)
-                _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
+    for (int y = 0; y < height; ++y) {
+        const std::size_t row = std::size_t(kMsaaSamples) * std::size_t(y) * samples.side;
+        std::int32_t* const fragment = &samples.fragment[row];
+        if (y < box_y0 || y >= box_y1 || box_x0 >= box_x1) {
+            std::fill_n(fragment, std::size_t(kMsaaSamples) * width, -1);
+            continue;
+        }
+        std::fill_n(fragment, std::size_t(kMsaaSamples) * box_x0, -1);
+        std::fill_n(fragment + std::size_t(kMsaaSamples) * box_x1, std::size_t(kMsaaSamples) * (width - box_x1), -1);
+        for (int x = box_x0; x < box_x1;) {
+            const std::size_t first = row + std::size_t(kMsaaSamples) * x;
+            if (x + 4 <= box_x1 && !any_covered4(&samples.depth[first])) {  // 4 background pixels
+                std::fill_n(&samples.fragment[first], 4 * kMsaaSamples, -1);
+                x += 4;
                 continue;
             }
-            const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
-            // Pairs 01 02 03 12, then 13 23.
-            const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
-            const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
-            const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
-            const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
-            const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
-                             (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
-            const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
-            // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
-            const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
-            _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
-            for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
-                const int s = std::countr_zero(firsts);
-                out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
-                out.triangle[count] = samples.triangle[first + s];
-                ++count;
+            const int end = std::min(x + 4, box_x1);
+            for (; x < end; ++x) {
+                const std::size_t at = row + std::size_t(kMsaaSamples) * x;
+                count = list_pixel(samples, at, x, y, &samples.fragment[at], out, count);
             }
         }
     }
@@ -108,6 +158,7 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
     const std::optional<TriangleInTile> placed = place_in_tile(t, tile);
     if (!placed) return;
     const int x_begin = placed->x_begin, x_end = placed->x_end, y_begin = placed->y_begin, y_end = placed->y_end;
+    samples.mark_written(x_begin - tile.x0, y_begin - tile.y0, x_end - tile.x0, y_end - tile.y0);
     TriangleInTile p = *placed;
     EdgeStepper* e = p.e;
     const SampleEdgeOffsets offset = sample_edge_offsets(p.e);
@@ -244,6 +295,7 @@ void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32
     const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
     const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return;
+    samples.mark_written(x_begin - tile.x0, y_begin - tile.y0, x_end - tile.x0, y_end - tile.y0);
     const SampleView view{samples.depth.data(), samples.triangle.data(), samples.side};
     // Tiny triangles (most of a finely tessellated mesh) set up in the kernel, in int32.
     if (tiny(t)) {

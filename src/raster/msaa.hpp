@@ -3,6 +3,7 @@
 // triangle (not per sample), as a GPU's multisampling does.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -22,9 +23,22 @@ struct TileSamples {
     std::vector<std::uint32_t> triangle;  // its triangle id, where depth < 1
     // Which of the tile's fragments (TileFragments) colours the sample; -1: background.
     std::vector<std::int32_t> fragment;
-    // Clears depth to 1 (allocates only when the side grows). depth and
-    // triangle are padded past the last pixel for the vector kernels.
+    // The tile-relative pixel box [x0, x1) × [y0, y1) outside which every
+    // depth is 1: the union of the boxes the rasterizers worked in since
+    // reset() (empty: x0 > x1). Code that writes depth itself widens it with
+    // mark_written(). reset() and list_fragments() touch only this box, so
+    // the background of a tile costs little.
+    int written_x0 = kEmptyBoxLow, written_y0 = kEmptyBoxLow, written_x1 = kEmptyBoxHigh, written_y1 = kEmptyBoxHigh;
+    void mark_written(int x0, int y0, int x1, int y1) {
+        written_x0 = std::min(written_x0, x0), written_y0 = std::min(written_y0, y0);
+        written_x1 = std::max(written_x1, x1), written_y1 = std::max(written_y1, y1);
+    }
+    // Clears depth to 1 (allocates only when the side grows; otherwise clears
+    // only the written box). depth and triangle are padded past the last pixel
+    // for the vector kernels.
     void reset(int tile_side);
+
+    static constexpr int kEmptyBoxLow = 1 << 30, kEmptyBoxHigh = -(1 << 30);
 };
 
 // The pixels' fragments: one per pixel and distinct triangle among its
@@ -67,7 +81,9 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 
 // The first half of collect_fragments(): sets samples.fragment and lists the
 // fragments' pixels and triangles (x, y, triangle, count), a pixel at a time
-// with SSE2 and a table, without the branches of the loop below.
+// with SSE2 and a table, without the branches of the loop below. Outside the
+// written box it only stores -1; inside, it skips 4 background pixels at a
+// time.
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
 
 // Lists the fragments of a width × height tile from its samples and sets

@@ -220,6 +220,7 @@ TEST_CASE("4x MSAA: collect_fragments lists the reference loop's fragments for e
             samples.depth[i] = unit(rng) < 0.3f ? 1.0f : unit(rng) * 0.99f;
             samples.triangle[i] = i % 3 ? few(rng) : any(rng);  // stale where depth is 1
         }
+        samples.mark_written(0, 0, side, side);
         check_collect_matches_reference(rect, samples, triangles);
     }
     // A rasterized mesh of tiny triangles: real edges between 2-4 triangles per pixel.
