@@ -7,6 +7,7 @@
 
 #include <emmintrin.h>
 
+#include "raster/msaa_fragment_kernels.hpp"
 #include "raster/msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_in_tile.hpp"
@@ -32,7 +33,7 @@ void TileSamples::reset(int tile_side) {
 
 void TileFragments::reserve(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
-    x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n);
+    x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n), source.resize(n);
     count = 0;
 }
 
@@ -145,6 +146,22 @@ void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& o
         }
     }
     out.count = count;
+}
+
+void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& out) {
+    const FragmentCentres centres{out.source.data(), out.x.data(), out.y.data(), rect.x0, rect.y0, out.count,
+                                  out.lambda1.data(), out.lambda2.data()};
+    switch (isa) {
+        case simd::Isa::sse4: return fragment_barycentrics_sse4(centres);
+        case simd::Isa::avx2: return fragment_barycentrics_avx2(centres);
+        case simd::Isa::avx512: return fragment_barycentrics_avx512(centres);
+        case simd::Isa::scalar: break;
+    }
+    for (std::size_t k = 0; k < out.count; ++k) {
+        const auto [l1, l2] = screen_barycentrics(*out.source[k], std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
+                                                  std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
+        out.lambda1[k] = l1, out.lambda2[k] = l2;
+    }
 }
 
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {

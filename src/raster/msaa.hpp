@@ -12,6 +12,7 @@
 #include "raster/raster_limits.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"
+#include "simd/isa.hpp"
 
 namespace tessera::raster {
 
@@ -50,6 +51,7 @@ struct TileFragments {
     std::vector<std::uint16_t> x, y;  // tile-relative pixel
     std::vector<std::uint32_t> triangle;
     std::vector<float> lambda1, lambda2;
+    std::vector<const RasterTriangle*> source;  // the triangle of each, for collect_fragments()
     std::size_t count = 0;
     void reserve(int tile_side);
 };
@@ -86,19 +88,26 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 // time.
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
 
+// λ1, λ2 of out's fragments at their pixel centres, whose triangles are
+// out.source: with the ISA's kernel (msaa_fragment_kernels.hpp), bit-identical
+// to screen_barycentrics(), which Isa::scalar calls.
+void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& out);
+
 // Lists the fragments of a width × height tile from its samples and sets
 // samples.fragment. triangle_of(id) gives the RasterTriangle of a triangle id.
 template <class TriangleOf>
-void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
+void collect_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of,
+                       TileFragments& out) {
     list_fragments(rect, samples, out);
-    // Each shaded at its pixel's centre.
+    // Each shaded at its pixel's centre. Neighbouring fragments mostly share
+    // a triangle: look it up once per run.
+    const RasterTriangle* t = nullptr;
+    std::uint32_t id = 0;
     for (std::size_t k = 0; k < out.count; ++k) {
-        const auto [l1, l2] =
-            screen_barycentrics(triangle_of(out.triangle[k]),
-                                std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
-                                std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
-        out.lambda1[k] = l1, out.lambda2[k] = l2;
+        if (t == nullptr || out.triangle[k] != id) id = out.triangle[k], t = &triangle_of(id);
+        out.source[k] = t;
     }
+    fragment_barycentrics(isa, rect, out);
 }
 
 // The plain loop collect_fragments() must match (tests compare them).
