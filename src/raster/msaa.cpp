@@ -1,7 +1,6 @@
 #include "raster/msaa.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstdlib>
 
@@ -33,7 +32,9 @@ void TileSamples::reset(int tile_side) {
 
 void TileFragments::reserve(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
-    x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n), source.resize(n);
+    // x, y and triangle padded: list_fragments() writes a pixel's 4 possible fragments unconditionally.
+    x.resize(n + kMsaaSamples), y.resize(n + kMsaaSamples), triangle.resize(n + kMsaaSamples);
+    lambda1.resize(n), lambda2.resize(n), source.resize(n);
     count = 0;
 }
 
@@ -46,7 +47,8 @@ namespace {
 // triangle, else a new one.
 struct PixelPattern {
     std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
-    std::uint32_t first_samples;          // bit s: sample s starts a fragment
+    std::uint8_t first_sample[kMsaaSamples];  // the sample each new fragment starts at (0 past the last)
+    std::uint32_t new_fragments;
 };
 struct PixelPatterns {
     PixelPattern pattern[1 << 10];
@@ -54,15 +56,17 @@ struct PixelPatterns {
         constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
         for (int key = 0; key < (1 << 10); ++key) {
             PixelPattern& p = pattern[key];
-            p.first_samples = 0;
+            p.new_fragments = 0;
             int fragments = 0;
             for (int s = 0; s < kMsaaSamples; ++s) {
                 p.fragment[s] = -1;
                 if (!((key >> s) & 1)) continue;
                 for (int t = 0; t < s && p.fragment[s] < 0; ++t)
                     if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
-                if (p.fragment[s] < 0) p.fragment[s] = fragments++, p.first_samples |= 1u << s;
+                if (p.fragment[s] < 0) p.first_sample[fragments] = std::uint8_t(s), p.fragment[s] = fragments++;
             }
+            for (int k = fragments; k < kMsaaSamples; ++k) p.first_sample[k] = 0;
+            p.new_fragments = std::uint32_t(fragments);
         }
     }
 };
@@ -73,18 +77,16 @@ constexpr PixelPatterns kPixelPatterns;
 namespace {
 
 // One pixel of list_fragments(): its samples' fragments, and the new ones
-// appended to out from `count` on; returns the new count.
-[[gnu::always_inline]] inline std::size_t list_pixel(const TileSamples& samples, std::size_t first, int x, int y,
-                                                     std::int32_t* fragment_of_samples, TileFragments& out,
-                                                     std::size_t count) {
-    __m128i* fragment = reinterpret_cast<__m128i*>(fragment_of_samples);
+// appended to out from `count` on; returns the new count. No branches (a
+// pixel's 0-4 new fragments are hard to predict): its 4 possible fragments
+// are written every time, and count moves past the real ones.
+[[gnu::always_inline]] inline std::size_t list_pixel(const TileSamples& samples, std::size_t first, std::uint16_t x,
+                                                     std::uint16_t y, std::int32_t* fragment_of_samples,
+                                                     TileFragments& out, std::size_t count) {
     const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), _mm_set1_ps(1.0f));
-    const int covered_bits = _mm_movemask_ps(covered);
-    if (covered_bits == 0) {  // background (no triangle ids to read)
-        _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
-        return count;
-    }
-    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
+    // Ids of uncovered samples may be stale: the table ignores their pairs.
+    const std::uint32_t* ids = &samples.triangle[first];
+    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids));
     // Pairs 01 02 03 12, then 13 23.
     const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
     const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
@@ -92,17 +94,16 @@ namespace {
     const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
     const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
                      (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
-    const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
+    const PixelPattern& p = kPixelPatterns.pattern[_mm_movemask_ps(covered) | same << 4];
     // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
     const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
-    _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
-    for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
-        const int s = std::countr_zero(firsts);
-        out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
-        out.triangle[count] = samples.triangle[first + s];
-        ++count;
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(fragment_of_samples),
+                     _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
+    for (int k = 0; k < kMsaaSamples; ++k) {
+        out.x[count + k] = x, out.y[count + k] = y;
+        out.triangle[count + k] = ids[p.first_sample[k]];
     }
-    return count;
+    return count + p.new_fragments;
 }
 
 // Whether any of the 4 pixels' samples from `first` on is covered.
@@ -141,7 +142,7 @@ void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& o
             const int end = std::min(x + 4, box_x1);
             for (; x < end; ++x) {
                 const std::size_t at = row + std::size_t(kMsaaSamples) * x;
-                count = list_pixel(samples, at, x, y, &samples.fragment[at], out, count);
+                count = list_pixel(samples, at, std::uint16_t(x), std::uint16_t(y), &samples.fragment[at], out, count);
             }
         }
     }

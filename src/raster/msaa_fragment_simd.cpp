@@ -1,7 +1,7 @@
 // λ1, λ2 of 4× MSAA fragments at their pixel centres (msaa_fragment_kernels.hpp),
 // compiled once per ISA: a vector of fragments at a time, their triangles'
 // corners gathered lane by lane, the edge functions in double.
-#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
@@ -44,45 +44,77 @@ using simd::round_to_float;
     return round_to_float(ax_lo * by_lo - ay_lo * bx_lo, ax_hi * by_hi - ay_hi * bx_hi);
 }
 
-// One vector's corners, centres and 1/area, lane by lane (lanes past the
-// last fragment keep earlier values; their results are not stored).
-struct Lanes {
-    alignas(64) std::int32_t x0[kLanes] = {}, y0[kLanes] = {}, x1[kLanes] = {}, y1[kLanes] = {}, x2[kLanes] = {},
-                                        y2[kLanes] = {}, px[kLanes] = {}, py[kLanes] = {};
-    alignas(64) float inv_area[kLanes] = {};
-    alignas(64) float lambda1[kLanes] = {}, lambda2[kLanes] = {};
+// One vector of fragments' triangles: corners and 1/area, lane i from
+// triangle[i]. A record's first 8 words are x0 x1 x2 y0 y1 y2 and the
+// pixel box: a load each and a transpose, as the triangle setup kernel reads
+// its corners (a hardware gather costs more on the AMD VMs).
+struct Corners {
+    Int x0, y0, x1, y1, x2, y2;
+    Float inv_area;
 };
+static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) == 12);
+
+[[gnu::always_inline]] inline Corners load_corners(const RasterTriangle* const* triangle) {
+    Corners c;
+#if XSIMD_WITH_AVX2 && !XSIMD_WITH_AVX512F
+    __m256i r[8], t[8], u[8];
+    for (int i = 0; i < 8; ++i) r[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(triangle[i]));
+    for (int i = 0; i < 8; i += 2)
+        t[i] = _mm256_unpacklo_epi32(r[i], r[i + 1]), t[i + 1] = _mm256_unpackhi_epi32(r[i], r[i + 1]);
+    for (int i = 0; i < 8; i += 4) {
+        u[i] = _mm256_unpacklo_epi64(t[i], t[i + 2]), u[i + 1] = _mm256_unpackhi_epi64(t[i], t[i + 2]);
+        u[i + 2] = _mm256_unpacklo_epi64(t[i + 1], t[i + 3]), u[i + 3] = _mm256_unpackhi_epi64(t[i + 1], t[i + 3]);
+    }
+    // u[j] (j < 4) holds word j of records 0, 1 (low half: words 0-3) and word
+    // j + 4 (high half) of records 0, 1; j + 4 the same for records ...
+    c.x0 = _mm256_permute2x128_si256(u[0], u[4], 0x20), c.y1 = _mm256_permute2x128_si256(u[0], u[4], 0x31);
+    c.x1 = _mm256_permute2x128_si256(u[1], u[5], 0x20), c.y2 = _mm256_permute2x128_si256(u[1], u[5], 0x31);
+    c.x2 = _mm256_permute2x128_si256(u[2], u[6], 0x20), c.y0 = _mm256_permute2x128_si256(u[3], u[7], 0x20);
+#elif !XSIMD_WITH_AVX
+    __m128 r[4];
+    for (int i = 0; i < 4; ++i) r[i] = _mm_load_ps(reinterpret_cast<const float*>(triangle[i]));
+    _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);  // x0 x1 x2 y0
+    c.x0 = _mm_castps_si128(r[0]), c.x1 = _mm_castps_si128(r[1]), c.x2 = _mm_castps_si128(r[2]), c.y0 = _mm_castps_si128(r[3]);
+    for (int i = 0; i < 4; ++i) r[i] = _mm_load_ps(reinterpret_cast<const float*>(triangle[i]) + 4);
+    _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);  // y1 y2, the box
+    c.y1 = _mm_castps_si128(r[0]), c.y2 = _mm_castps_si128(r[1]);
+#else  // AVX-512: lane by lane
+    alignas(64) std::int32_t w[6][kLanes];
+    for (std::size_t i = 0; i < kLanes; ++i)
+        for (int k = 0; k < 3; ++k) w[k][i] = triangle[i]->x[k], w[3 + k][i] = triangle[i]->y[k];
+    c.x0 = Int::load_aligned(w[0]), c.x1 = Int::load_aligned(w[1]), c.x2 = Int::load_aligned(w[2]);
+    c.y0 = Int::load_aligned(w[3]), c.y1 = Int::load_aligned(w[4]), c.y2 = Int::load_aligned(w[5]);
+#endif
+    alignas(64) float inv_area[kLanes];
+    for (std::size_t i = 0; i < kLanes; ++i) inv_area[i] = triangle[i]->inv_area;
+    c.inv_area = Float::load_aligned(inv_area);
+    return c;
+}
 
 }  // namespace
 
 void TESSERA_SIMD_ENTRY(fragment_barycentrics)(const FragmentCentres& f) {
-    Lanes lanes;
-    const std::int32_t centre_x = f.origin_x * kSubpixelScale + kSubpixelScale / 2;
-    const std::int32_t centre_y = f.origin_y * kSubpixelScale + kSubpixelScale / 2;
-    for (std::size_t k = 0; k < f.count; k += kLanes) {
-        const std::size_t n = std::min(kLanes, f.count - k);
-        for (std::size_t i = 0; i < n; ++i) {
-            const RasterTriangle& t = *f.triangle[k + i];
-            lanes.x0[i] = t.x[0], lanes.y0[i] = t.y[0], lanes.x1[i] = t.x[1], lanes.y1[i] = t.y[1];
-            lanes.x2[i] = t.x[2], lanes.y2[i] = t.y[2], lanes.inv_area[i] = t.inv_area;
-            lanes.px[i] = centre_x + std::int32_t(f.x[k + i]) * kSubpixelScale;
-            lanes.py[i] = centre_y + std::int32_t(f.y[k + i]) * kSubpixelScale;
-        }
-        const Int x0 = Int::load_aligned(lanes.x0), y0 = Int::load_aligned(lanes.y0);
-        const Int x1 = Int::load_aligned(lanes.x1), y1 = Int::load_aligned(lanes.y1);
-        const Int x2 = Int::load_aligned(lanes.x2), y2 = Int::load_aligned(lanes.y2);
-        const Int px = Int::load_aligned(lanes.px), py = Int::load_aligned(lanes.py);
-        const Float inv_area = Float::load_aligned(lanes.inv_area);
+    const Int centre_x(f.origin_x * kSubpixelScale + kSubpixelScale / 2);
+    const Int centre_y(f.origin_y * kSubpixelScale + kSubpixelScale / 2);
+    std::size_t k = 0;
+    for (; k + kLanes <= f.count; k += kLanes) {
+        const Corners c = load_corners(f.triangle + k);
+        alignas(64) std::int32_t x[kLanes], y[kLanes];
+        for (std::size_t i = 0; i < kLanes; ++i) x[i] = f.x[k + i], y[i] = f.y[k + i];
+        const Int px = centre_x + (Int::load_aligned(x) << kSubpixelBits);
+        const Int py = centre_y + (Int::load_aligned(y) << kSubpixelBits);
         // As screen_barycentrics(): λ1 = E(2→0)/area, λ2 = E(0→1)/area, with
         // E(a→b) at p = (b − a) × (p − a).
-        const Float lambda1 = cross_to_float(x0 - x2, y0 - y2, px - x2, py - y2) * inv_area;
-        const Float lambda2 = cross_to_float(x1 - x0, y1 - y0, px - x0, py - y0) * inv_area;
-        if (n == kLanes) {
-            lambda1.store_unaligned(f.lambda1 + k), lambda2.store_unaligned(f.lambda2 + k);
-            continue;
-        }
-        lambda1.store_aligned(lanes.lambda1), lambda2.store_aligned(lanes.lambda2);
-        std::copy_n(lanes.lambda1, n, f.lambda1 + k), std::copy_n(lanes.lambda2, n, f.lambda2 + k);
+        const Float lambda1 = cross_to_float(c.x0 - c.x2, c.y0 - c.y2, px - c.x2, py - c.y2) * c.inv_area;
+        const Float lambda2 = cross_to_float(c.x1 - c.x0, c.y1 - c.y0, px - c.x0, py - c.y0) * c.inv_area;
+        lambda1.store_unaligned(f.lambda1 + k), lambda2.store_unaligned(f.lambda2 + k);
+    }
+    for (; k < f.count; ++k) {  // the last few, as screen_barycentrics()
+        const RasterTriangle& t = *f.triangle[k];
+        const std::int64_t px = std::int64_t(f.origin_x + f.x[k]) * kSubpixelScale + kSubpixelScale / 2;
+        const std::int64_t py = std::int64_t(f.origin_y + f.y[k]) * kSubpixelScale + kSubpixelScale / 2;
+        f.lambda1[k] = float(edge_function(t.x[2], t.y[2], t.x[0], t.y[0], px, py)) * t.inv_area;
+        f.lambda2[k] = float(edge_function(t.x[0], t.y[0], t.x[1], t.y[1], px, py)) * t.inv_area;
     }
 }
 
