@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include <emmintrin.h>
 
@@ -44,19 +45,23 @@ namespace {
 // 0-3) and which pairs of samples have the same triangle id (bits 4-9: 01, 02,
 // 03, 12, 13, 23), worked out once by the reference loop's rule: a covered
 // sample takes the fragment of the first earlier covered sample with its
-// triangle, else a new one.
+// triangle, else a new one. The 1024 keys have few distinct patterns: a byte
+// per key names one, so both tables stay in L1 beside the tile's samples.
 struct PixelPattern {
     std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
     std::uint8_t first_sample[kMsaaSamples];  // the sample each new fragment starts at (0 past the last)
     std::uint32_t new_fragments;
+    constexpr bool operator==(const PixelPattern&) const = default;
 };
 struct PixelPatterns {
-    PixelPattern pattern[1 << 10];
-    constexpr PixelPatterns() : pattern{} {
+    static constexpr int kMaxDistinct = 128;
+    PixelPattern pattern[kMaxDistinct];
+    std::uint8_t of_key[1 << 10];
+    int distinct = 0;
+    constexpr PixelPatterns() : pattern{}, of_key{} {
         constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
         for (int key = 0; key < (1 << 10); ++key) {
-            PixelPattern& p = pattern[key];
-            p.new_fragments = 0;
+            PixelPattern p{};
             int fragments = 0;
             for (int s = 0; s < kMsaaSamples; ++s) {
                 p.fragment[s] = -1;
@@ -65,8 +70,14 @@ struct PixelPatterns {
                     if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
                 if (p.fragment[s] < 0) p.first_sample[fragments] = std::uint8_t(s), p.fragment[s] = fragments++;
             }
-            for (int k = fragments; k < kMsaaSamples; ++k) p.first_sample[k] = 0;
             p.new_fragments = std::uint32_t(fragments);
+            int i = 0;
+            while (i < distinct && !(pattern[i] == p)) ++i;
+            if (i == distinct) {
+                if (distinct == kMaxDistinct) throw "more distinct pixel patterns than kMaxDistinct";
+                pattern[distinct++] = p;
+            }
+            of_key[key] = std::uint8_t(i);
         }
     }
 };
@@ -76,16 +87,25 @@ constexpr PixelPatterns kPixelPatterns;
 
 namespace {
 
-// One pixel of list_fragments(): its samples' fragments, and the new ones
-// appended to out from `count` on; returns the new count. No branches (a
-// pixel's 0-4 new fragments are hard to predict): its 4 possible fragments
-// are written every time, and count moves past the real ones.
-[[gnu::always_inline]] inline std::size_t list_pixel(const TileSamples& samples, std::size_t first, std::uint16_t x,
-                                                     std::uint16_t y, std::int32_t* fragment_of_samples,
-                                                     TileFragments& out, std::size_t count) {
-    const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), _mm_set1_ps(1.0f));
+// Where list_fragments() reads and writes, as plain pointers: g++ would
+// reload the vectors' data pointers after every store (they might alias).
+struct FragmentListing {
+    const float* depth;
+    const std::uint32_t* triangle;
+    std::int32_t* fragment;
+    std::uint16_t *x, *y;
+    std::uint32_t* fragment_triangle;
+};
+
+// One pixel of list_fragments() (its samples from `first` on): its samples'
+// fragments, and the new ones appended from `count` on; returns the new
+// count. No branches (a pixel's 0-4 new fragments are hard to predict): its
+// 4 possible fragments are written every time, and count moves past the real ones.
+[[gnu::always_inline]] inline std::size_t list_pixel(const FragmentListing& l, std::size_t first, std::uint16_t x,
+                                                     std::uint16_t y, std::size_t count) {
+    const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(l.depth + first), _mm_set1_ps(1.0f));
     // Ids of uncovered samples may be stale: the table ignores their pairs.
-    const std::uint32_t* ids = &samples.triangle[first];
+    const std::uint32_t* ids = l.triangle + first;
     const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids));
     // Pairs 01 02 03 12, then 13 23.
     const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
@@ -94,15 +114,14 @@ namespace {
     const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
     const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
                      (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
-    const PixelPattern& p = kPixelPatterns.pattern[_mm_movemask_ps(covered) | same << 4];
+    const PixelPattern& p = kPixelPatterns.pattern[kPixelPatterns.of_key[_mm_movemask_ps(covered) | same << 4]];
     // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
     const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(fragment_of_samples),
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(l.fragment + first),
                      _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
-    for (int k = 0; k < kMsaaSamples; ++k) {
-        out.x[count + k] = x, out.y[count + k] = y;
-        out.triangle[count + k] = ids[p.first_sample[k]];
-    }
+    const std::uint64_t four_x = x * 0x0001000100010001u, four_y = y * 0x0001000100010001u;
+    std::memcpy(l.x + count, &four_x, sizeof four_x), std::memcpy(l.y + count, &four_y, sizeof four_y);
+    for (int k = 0; k < kMsaaSamples; ++k) l.fragment_triangle[count + k] = ids[p.first_sample[k]];
     return count + p.new_fragments;
 }
 
@@ -122,10 +141,12 @@ void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& o
     // Depth is 1 outside the written box: there every sample is background.
     const int box_x0 = std::max(samples.written_x0, 0), box_x1 = std::min(samples.written_x1, width);
     const int box_y0 = std::max(samples.written_y0, 0), box_y1 = std::min(samples.written_y1, height);
+    const FragmentListing l{samples.depth.data(), samples.triangle.data(), samples.fragment.data(),
+                            out.x.data(), out.y.data(), out.triangle.data()};
     std::size_t count = 0;
     for (int y = 0; y < height; ++y) {
         const std::size_t row = std::size_t(kMsaaSamples) * std::size_t(y) * samples.side;
-        std::int32_t* const fragment = &samples.fragment[row];
+        std::int32_t* const fragment = l.fragment + row;
         if (y < box_y0 || y >= box_y1 || box_x0 >= box_x1) {
             std::fill_n(fragment, std::size_t(kMsaaSamples) * width, -1);
             continue;
@@ -134,15 +155,15 @@ void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& o
         std::fill_n(fragment + std::size_t(kMsaaSamples) * box_x1, std::size_t(kMsaaSamples) * (width - box_x1), -1);
         for (int x = box_x0; x < box_x1;) {
             const std::size_t first = row + std::size_t(kMsaaSamples) * x;
-            if (x + 4 <= box_x1 && !any_covered4(&samples.depth[first])) {  // 4 background pixels
-                std::fill_n(&samples.fragment[first], 4 * kMsaaSamples, -1);
+            if (x + 4 <= box_x1 && !any_covered4(l.depth + first)) {  // 4 background pixels
+                std::fill_n(l.fragment + first, 4 * kMsaaSamples, -1);
                 x += 4;
                 continue;
             }
             const int end = std::min(x + 4, box_x1);
             for (; x < end; ++x) {
                 const std::size_t at = row + std::size_t(kMsaaSamples) * x;
-                count = list_pixel(samples, at, std::uint16_t(x), std::uint16_t(y), &samples.fragment[at], out, count);
+                count = list_pixel(l, at, std::uint16_t(x), std::uint16_t(y), count);
             }
         }
     }
