@@ -65,8 +65,8 @@ static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) ==
         u[i] = _mm256_unpacklo_epi64(t[i], t[i + 2]), u[i + 1] = _mm256_unpackhi_epi64(t[i], t[i + 2]);
         u[i + 2] = _mm256_unpacklo_epi64(t[i + 1], t[i + 3]), u[i + 3] = _mm256_unpackhi_epi64(t[i + 1], t[i + 3]);
     }
-    // u[j] (j < 4) holds word j of records 0, 1 (low half: words 0-3) and word
-    // j + 4 (high half) of records 0, 1; j + 4 the same for records ...
+    // u[j] (j < 4): word j of records 0-3 in its low half, word j + 4 of them
+    // in its high half; u[j + 4] the same of records 4-7.
     c.x0 = _mm256_permute2x128_si256(u[0], u[4], 0x20), c.y1 = _mm256_permute2x128_si256(u[0], u[4], 0x31);
     c.x1 = _mm256_permute2x128_si256(u[1], u[5], 0x20), c.y2 = _mm256_permute2x128_si256(u[1], u[5], 0x31);
     c.x2 = _mm256_permute2x128_si256(u[2], u[6], 0x20), c.y0 = _mm256_permute2x128_si256(u[3], u[7], 0x20);
