@@ -36,6 +36,17 @@ using simd::round_to_float;
 #endif
 }
 
+// A vector's worth of uint16 as int32 lanes.
+[[gnu::always_inline]] inline Int widen_u16(const std::uint16_t* v) {
+#if XSIMD_WITH_AVX512F
+    return _mm512_cvtepu16_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(v)));
+#elif XSIMD_WITH_AVX2
+    return _mm256_cvtepu16_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)));
+#else
+    return _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(v)));
+#endif
+}
+
 // (a_x · b_y − a_y · b_x) rounded once to float: the products and their
 // difference are exact integers in double.
 [[gnu::always_inline]] inline Float cross_to_float(const Int& ax, const Int& ay, const Int& bx, const Int& by) {
@@ -99,10 +110,8 @@ void TESSERA_SIMD_ENTRY(fragment_barycentrics)(const FragmentCentres& f) {
     std::size_t k = 0;
     for (; k + kLanes <= f.count; k += kLanes) {
         const Corners c = load_corners(f.triangle + k);
-        alignas(64) std::int32_t x[kLanes], y[kLanes];
-        for (std::size_t i = 0; i < kLanes; ++i) x[i] = f.x[k + i], y[i] = f.y[k + i];
-        const Int px = centre_x + (Int::load_aligned(x) << kSubpixelBits);
-        const Int py = centre_y + (Int::load_aligned(y) << kSubpixelBits);
+        const Int px = centre_x + (widen_u16(f.x + k) << kSubpixelBits);
+        const Int py = centre_y + (widen_u16(f.y + k) << kSubpixelBits);
         // As screen_barycentrics(): λ1 = E(2→0)/area, λ2 = E(0→1)/area, with
         // E(a→b) at p = (b − a) × (p − a).
         const Float lambda1 = cross_to_float(c.x0 - c.x2, c.y0 - c.y2, px - c.x2, py - c.y2) * c.inv_area;
