@@ -1,12 +1,13 @@
 #include "raster/msaa.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 #include <emmintrin.h>
 
+#include "raster/msaa_fragment_kernels.hpp"
 #include "raster/msaa_kernels.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_in_tile.hpp"
@@ -15,15 +16,26 @@ namespace tessera::raster {
 
 void TileSamples::reset(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;
-    side = tile_side;
-    depth.assign(n + kMsaaKernelOverreach, 1.0f);
-    triangle.resize(n + kMsaaKernelOverreach);
-    fragment.resize(n);
+    if (tile_side == side && depth.size() == n + kMsaaKernelOverreach) {
+        // Outside the written box depth is still 1.
+        const int x0 = std::max(written_x0, 0), x1 = std::min(written_x1, side);
+        for (int y = std::max(written_y0, 0); y < std::min(written_y1, side) && x0 < x1; ++y)
+            std::fill_n(&depth[std::size_t(kMsaaSamples) * (std::size_t(y) * side + x0)],
+                        std::size_t(kMsaaSamples) * (x1 - x0), 1.0f);
+    } else {
+        side = tile_side;
+        depth.assign(n + kMsaaKernelOverreach, 1.0f);
+        triangle.resize(n + kMsaaKernelOverreach);
+        fragment.resize(n);
+    }
+    written_x0 = written_y0 = kEmptyBoxLow, written_x1 = written_y1 = kEmptyBoxHigh;
 }
 
 void TileFragments::reserve(int tile_side) {
     const std::size_t n = std::size_t(kMsaaSamples) * tile_side * tile_side;  // at most one per sample
-    x.resize(n), y.resize(n), triangle.resize(n), lambda1.resize(n), lambda2.resize(n);
+    // x, y and triangle padded: list_fragments() writes a pixel's 4 possible fragments unconditionally.
+    x.resize(n + kMsaaSamples), y.resize(n + kMsaaSamples), triangle.resize(n + kMsaaSamples);
+    lambda1.resize(n), lambda2.resize(n), source.resize(n);
     count = 0;
 }
 
@@ -33,26 +45,39 @@ namespace {
 // 0-3) and which pairs of samples have the same triangle id (bits 4-9: 01, 02,
 // 03, 12, 13, 23), worked out once by the reference loop's rule: a covered
 // sample takes the fragment of the first earlier covered sample with its
-// triangle, else a new one.
+// triangle, else a new one. The 1024 keys have few distinct patterns: a byte
+// per key names one, so both tables stay in L1 beside the tile's samples.
 struct PixelPattern {
     std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
-    std::uint32_t first_samples;          // bit s: sample s starts a fragment
+    std::uint8_t first_sample[kMsaaSamples];  // the sample each new fragment starts at (0 past the last)
+    std::uint32_t new_fragments;
+    constexpr bool operator==(const PixelPattern&) const = default;
 };
 struct PixelPatterns {
-    PixelPattern pattern[1 << 10];
-    constexpr PixelPatterns() : pattern{} {
+    static constexpr int kMaxDistinct = 128;
+    PixelPattern pattern[kMaxDistinct];
+    std::uint8_t of_key[1 << 10];
+    int distinct = 0;
+    constexpr PixelPatterns() : pattern{}, of_key{} {
         constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
         for (int key = 0; key < (1 << 10); ++key) {
-            PixelPattern& p = pattern[key];
-            p.first_samples = 0;
+            PixelPattern p{};
             int fragments = 0;
             for (int s = 0; s < kMsaaSamples; ++s) {
                 p.fragment[s] = -1;
                 if (!((key >> s) & 1)) continue;
                 for (int t = 0; t < s && p.fragment[s] < 0; ++t)
                     if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
-                if (p.fragment[s] < 0) p.fragment[s] = fragments++, p.first_samples |= 1u << s;
+                if (p.fragment[s] < 0) p.first_sample[fragments] = std::uint8_t(s), p.fragment[s] = fragments++;
             }
+            p.new_fragments = std::uint32_t(fragments);
+            int i = 0;
+            while (i < distinct && !(pattern[i] == p)) ++i;
+            if (i == distinct) {
+                if (distinct == kMaxDistinct) throw "more distinct pixel patterns than kMaxDistinct";
+                pattern[distinct++] = p;
+            }
+            of_key[key] = std::uint8_t(i);
         }
     }
 };
@@ -60,41 +85,105 @@ constexpr PixelPatterns kPixelPatterns;
 
 }  // namespace
 
+namespace {
+
+// Where list_fragments() reads and writes, as plain pointers: g++ would
+// reload the vectors' data pointers after every store (they might alias).
+struct FragmentListing {
+    const float* depth;
+    const std::uint32_t* triangle;
+    std::int32_t* fragment;
+    std::uint16_t *x, *y;
+    std::uint32_t* fragment_triangle;
+};
+
+// One pixel of list_fragments() (its samples from `first` on): its samples'
+// fragments, and the new ones appended from `count` on; returns the new
+// count. No branches (a pixel's 0-4 new fragments are hard to predict): its
+// 4 possible fragments are written every time, and count moves past the real ones.
+[[gnu::always_inline]] inline std::size_t list_pixel(const FragmentListing& l, std::size_t first, std::uint16_t x,
+                                                     std::uint16_t y, std::size_t count) {
+    const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(l.depth + first), _mm_set1_ps(1.0f));
+    // Ids of uncovered samples may be stale: the table ignores their pairs.
+    const std::uint32_t* ids = l.triangle + first;
+    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids));
+    // Pairs 01 02 03 12, then 13 23.
+    const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
+    const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
+    const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
+    const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
+    const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
+                     (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
+    const PixelPattern& p = kPixelPatterns.pattern[kPixelPatterns.of_key[_mm_movemask_ps(covered) | same << 4]];
+    // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
+    const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(l.fragment + first),
+                     _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
+    const std::uint64_t four_x = x * 0x0001000100010001u, four_y = y * 0x0001000100010001u;
+    std::memcpy(l.x + count, &four_x, sizeof four_x), std::memcpy(l.y + count, &four_y, sizeof four_y);
+    for (int k = 0; k < kMsaaSamples; ++k) l.fragment_triangle[count + k] = ids[p.first_sample[k]];
+    return count + p.new_fragments;
+}
+
+// Whether any of the 4 pixels' samples from `first` on is covered.
+[[gnu::always_inline]] inline bool any_covered4(const float* depth) {
+    const __m128 one = _mm_set1_ps(1.0f);
+    const __m128 a = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 4), one));
+    const __m128 b = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth + 8), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 12), one));
+    return _mm_movemask_ps(_mm_or_ps(a, b)) != 0;
+}
+
+}  // namespace
+
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out) {
     static_assert(kMsaaSamples == 4, "a pixel's samples are one SSE vector");
-    const __m128 one = _mm_set1_ps(1.0f);
+    const int width = rect.width(), height = rect.height();
+    // Depth is 1 outside the written box: there every sample is background.
+    const int box_x0 = std::max(samples.written_x0, 0), box_x1 = std::min(samples.written_x1, width);
+    const int box_y0 = std::max(samples.written_y0, 0), box_y1 = std::min(samples.written_y1, height);
+    const FragmentListing l{samples.depth.data(), samples.triangle.data(), samples.fragment.data(),
+                            out.x.data(), out.y.data(), out.triangle.data()};
     std::size_t count = 0;
-    for (int y = 0; y < rect.height(); ++y) {
-        for (int x = 0; x < rect.width(); ++x) {
-            const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * samples.side + x);
-            __m128i* fragment = reinterpret_cast<__m128i*>(&samples.fragment[first]);
-            const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(&samples.depth[first]), one);
-            const int covered_bits = _mm_movemask_ps(covered);
-            if (covered_bits == 0) {  // background (no triangle ids to read)
-                _mm_storeu_si128(fragment, _mm_set1_epi32(-1));
+    for (int y = 0; y < height; ++y) {
+        const std::size_t row = std::size_t(kMsaaSamples) * std::size_t(y) * samples.side;
+        std::int32_t* const fragment = l.fragment + row;
+        if (y < box_y0 || y >= box_y1 || box_x0 >= box_x1) {
+            std::fill_n(fragment, std::size_t(kMsaaSamples) * width, -1);
+            continue;
+        }
+        std::fill_n(fragment, std::size_t(kMsaaSamples) * box_x0, -1);
+        std::fill_n(fragment + std::size_t(kMsaaSamples) * box_x1, std::size_t(kMsaaSamples) * (width - box_x1), -1);
+        for (int x = box_x0; x < box_x1;) {
+            const std::size_t first = row + std::size_t(kMsaaSamples) * x;
+            if (x + 4 <= box_x1 && !any_covered4(l.depth + first)) {  // 4 background pixels
+                std::fill_n(l.fragment + first, 4 * kMsaaSamples, -1);
+                x += 4;
                 continue;
             }
-            const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&samples.triangle[first]));
-            // Pairs 01 02 03 12, then 13 23.
-            const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
-            const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
-            const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
-            const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
-            const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
-                             (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
-            const PixelPattern& p = kPixelPatterns.pattern[covered_bits | same << 4];
-            // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
-            const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
-            _mm_storeu_si128(fragment, _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
-            for (std::uint32_t firsts = p.first_samples; firsts != 0; firsts &= firsts - 1) {
-                const int s = std::countr_zero(firsts);
-                out.x[count] = std::uint16_t(x), out.y[count] = std::uint16_t(y);
-                out.triangle[count] = samples.triangle[first + s];
-                ++count;
+            const int end = std::min(x + 4, box_x1);
+            for (; x < end; ++x) {
+                const std::size_t at = row + std::size_t(kMsaaSamples) * x;
+                count = list_pixel(l, at, std::uint16_t(x), std::uint16_t(y), count);
             }
         }
     }
     out.count = count;
+}
+
+void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& out) {
+    const FragmentCentres centres{out.source.data(), out.x.data(), out.y.data(), rect.x0, rect.y0, out.count,
+                                  out.lambda1.data(), out.lambda2.data()};
+    switch (isa) {
+        case simd::Isa::sse4: return fragment_barycentrics_sse4(centres);
+        case simd::Isa::avx2: return fragment_barycentrics_avx2(centres);
+        case simd::Isa::avx512: return fragment_barycentrics_avx512(centres);
+        case simd::Isa::scalar: break;
+    }
+    for (std::size_t k = 0; k < out.count; ++k) {
+        const auto [l1, l2] = screen_barycentrics(*out.source[k], std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
+                                                  std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
+        out.lambda1[k] = l1, out.lambda2[k] = l2;
+    }
 }
 
 bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py) {
@@ -108,6 +197,7 @@ void rasterize_triangle_msaa(const RasterTriangle& t, std::uint32_t triangle_id,
     const std::optional<TriangleInTile> placed = place_in_tile(t, tile);
     if (!placed) return;
     const int x_begin = placed->x_begin, x_end = placed->x_end, y_begin = placed->y_begin, y_end = placed->y_end;
+    samples.mark_written(x_begin - tile.x0, y_begin - tile.y0, x_end - tile.x0, y_end - tile.y0);
     TriangleInTile p = *placed;
     EdgeStepper* e = p.e;
     const SampleEdgeOffsets offset = sample_edge_offsets(p.e);
@@ -244,6 +334,7 @@ void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32
     const int x_begin = std::max<int>(t.px_min, tile.x0), x_end = std::min<int>(t.px_max + 1, tile.x1);
     const int y_begin = std::max<int>(t.py_min, tile.y0), y_end = std::min<int>(t.py_max + 1, tile.y1);
     if (x_begin >= x_end || y_begin >= y_end) return;
+    samples.mark_written(x_begin - tile.x0, y_begin - tile.y0, x_end - tile.x0, y_end - tile.y0);
     const SampleView view{samples.depth.data(), samples.triangle.data(), samples.side};
     // Tiny triangles (most of a finely tessellated mesh) set up in the kernel, in int32.
     if (tiny(t)) {

@@ -3,6 +3,7 @@
 // triangle (not per sample), as a GPU's multisampling does.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "raster/raster_limits.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"
+#include "simd/isa.hpp"
 
 namespace tessera::raster {
 
@@ -22,9 +24,22 @@ struct TileSamples {
     std::vector<std::uint32_t> triangle;  // its triangle id, where depth < 1
     // Which of the tile's fragments (TileFragments) colours the sample; -1: background.
     std::vector<std::int32_t> fragment;
-    // Clears depth to 1 (allocates only when the side grows). depth and
-    // triangle are padded past the last pixel for the vector kernels.
+    // The tile-relative pixel box [x0, x1) × [y0, y1) outside which every
+    // depth is 1: the union of the boxes the rasterizers worked in since
+    // reset() (empty: x0 > x1). Code that writes depth itself widens it with
+    // mark_written(). reset() and list_fragments() touch only this box, so
+    // the background of a tile costs little.
+    int written_x0 = kEmptyBoxLow, written_y0 = kEmptyBoxLow, written_x1 = kEmptyBoxHigh, written_y1 = kEmptyBoxHigh;
+    void mark_written(int x0, int y0, int x1, int y1) {
+        written_x0 = std::min(written_x0, x0), written_y0 = std::min(written_y0, y0);
+        written_x1 = std::max(written_x1, x1), written_y1 = std::max(written_y1, y1);
+    }
+    // Clears depth to 1 (allocates only when the side grows; otherwise clears
+    // only the written box). depth and triangle are padded past the last pixel
+    // for the vector kernels.
     void reset(int tile_side);
+
+    static constexpr int kEmptyBoxLow = 1 << 30, kEmptyBoxHigh = -(1 << 30);
 };
 
 // The pixels' fragments: one per pixel and distinct triangle among its
@@ -36,6 +51,7 @@ struct TileFragments {
     std::vector<std::uint16_t> x, y;  // tile-relative pixel
     std::vector<std::uint32_t> triangle;
     std::vector<float> lambda1, lambda2;
+    std::vector<const RasterTriangle*> source;  // the triangle of each, for collect_fragments()
     std::size_t count = 0;
     void reserve(int tile_side);
 };
@@ -67,22 +83,31 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 
 // The first half of collect_fragments(): sets samples.fragment and lists the
 // fragments' pixels and triangles (x, y, triangle, count), a pixel at a time
-// with SSE2 and a table, without the branches of the loop below.
+// with SSE2 and a table, without the branches of the loop below. Outside the
+// written box it only stores -1; inside, it skips 4 background pixels at a
+// time.
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
+
+// λ1, λ2 of out's fragments at their pixel centres, whose triangles are
+// out.source: with the ISA's kernel (msaa_fragment_kernels.hpp), bit-identical
+// to screen_barycentrics(), which Isa::scalar calls.
+void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& out);
 
 // Lists the fragments of a width × height tile from its samples and sets
 // samples.fragment. triangle_of(id) gives the RasterTriangle of a triangle id.
 template <class TriangleOf>
-void collect_fragments(const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of, TileFragments& out) {
+void collect_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of,
+                       TileFragments& out) {
     list_fragments(rect, samples, out);
-    // Each shaded at its pixel's centre.
+    // Each shaded at its pixel's centre. Neighbouring fragments mostly share
+    // a triangle: look it up once per run.
+    const RasterTriangle* t = nullptr;
+    std::uint32_t id = 0;
     for (std::size_t k = 0; k < out.count; ++k) {
-        const auto [l1, l2] =
-            screen_barycentrics(triangle_of(out.triangle[k]),
-                                std::int64_t(rect.x0 + out.x[k]) * kSubpixelScale + kSubpixelScale / 2,
-                                std::int64_t(rect.y0 + out.y[k]) * kSubpixelScale + kSubpixelScale / 2);
-        out.lambda1[k] = l1, out.lambda2[k] = l2;
+        if (t == nullptr || out.triangle[k] != id) id = out.triangle[k], t = &triangle_of(id);
+        out.source[k] = t;
     }
+    fragment_barycentrics(isa, rect, out);
 }
 
 // The plain loop collect_fragments() must match (tests compare them).

@@ -601,7 +601,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
     shade_and_resolve(
         scene, clear, tile, drawn, t0, s,
         [&] {  // one fragment per pixel and visible triangle
-            raster::collect_fragments(rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
+            raster::collect_fragments(isa, rect, s.samples, [&](std::uint32_t id) -> const raster::RasterTriangle& {
                 return triangle_of(id);
             }, s.sample_fragments);
             return shade::gather_surface_points(

@@ -29,7 +29,7 @@ struct MsaaTile {
         fragments.reserve(kSize);
         raster::RasterCounters counters;
         raster::rasterize_triangle_msaa(t, 7, {0, 0, kSize, kSize}, samples, counters);
-        raster::collect_fragments({0, 0, kSize, kSize}, samples,
+        raster::collect_fragments(simd::best_supported_isa(), {0, 0, kSize, kSize}, samples,
                                   [&](std::uint32_t) -> const raster::RasterTriangle& { return t; }, fragments);
     }
     bool covered(int x, int y, int s) const { return samples.depth[4 * (y * kSize + x) + s] < 1.0f; }

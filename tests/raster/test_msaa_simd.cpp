@@ -167,32 +167,42 @@ TEST_CASE("4x MSAA: huge triangles next to small ones match the scalar loop in e
 
 namespace {
 
-// collect_fragments and the plain loop it replaces on the same samples:
-// samples.fragment, the fragments' pixels, triangles and barycentrics (bits).
+// collect_fragments with every ISA the CPU has and the plain loop it
+// replaces, on the same samples: samples.fragment over the rect, the
+// fragments' pixels, triangles and barycentrics (bits).
 void check_collect_matches_reference(const raster::TileRect& rect, raster::TileSamples& samples,
                                      const std::vector<raster::RasterTriangle>& triangles) {
     const int side = samples.side;
     auto triangle_of = [&](std::uint32_t id) -> const raster::RasterTriangle& { return triangles[id]; };
-    raster::TileFragments expected, actual;
-    expected.reserve(side), actual.reserve(side);
+    raster::TileFragments expected;
+    expected.reserve(side);
     raster::collect_fragments_reference(rect, samples, triangle_of, expected);
     const std::vector<std::int32_t> expected_fragment = samples.fragment;
-    std::fill(samples.fragment.begin(), samples.fragment.end(), 12345);
-    raster::collect_fragments(rect, samples, triangle_of, actual);
-    REQUIRE(actual.count == expected.count);
-    int wrong = 0;
-    for (int y = 0; y < rect.height(); ++y)
-        for (int x = 0; x < rect.width(); ++x)
-            for (int s = 0; s < raster::kMsaaSamples; ++s) {
-                const std::size_t i = std::size_t(raster::kMsaaSamples) * (std::size_t(y) * side + x) + s;
-                wrong += samples.fragment[i] != expected_fragment[i];
-            }
-    for (std::size_t k = 0; k < expected.count; ++k)
-        wrong += actual.x[k] != expected.x[k] || actual.y[k] != expected.y[k] ||
-                 actual.triangle[k] != expected.triangle[k] ||
-                 std::memcmp(&actual.lambda1[k], &expected.lambda1[k], 4) != 0 ||
-                 std::memcmp(&actual.lambda2[k], &expected.lambda2[k], 4) != 0;
-    CHECK(wrong == 0);
+    for (simd::Isa isa : {simd::Isa::scalar, simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+        CAPTURE(simd::isa_name(isa));
+        if (!simd::isa_supported(isa)) {
+            MESSAGE("skipped: " << simd::isa_name(isa) << " is not supported by this CPU");
+            continue;
+        }
+        raster::TileFragments actual;
+        actual.reserve(side);
+        std::fill(samples.fragment.begin(), samples.fragment.end(), 12345);
+        raster::collect_fragments(isa, rect, samples, triangle_of, actual);
+        REQUIRE(actual.count == expected.count);
+        int wrong = 0;
+        for (int y = 0; y < rect.height(); ++y)
+            for (int x = 0; x < rect.width(); ++x)
+                for (int s = 0; s < raster::kMsaaSamples; ++s) {
+                    const std::size_t i = std::size_t(raster::kMsaaSamples) * (std::size_t(y) * side + x) + s;
+                    wrong += samples.fragment[i] != expected_fragment[i];
+                }
+        for (std::size_t k = 0; k < expected.count; ++k)
+            wrong += actual.x[k] != expected.x[k] || actual.y[k] != expected.y[k] ||
+                     actual.triangle[k] != expected.triangle[k] ||
+                     std::memcmp(&actual.lambda1[k], &expected.lambda1[k], 4) != 0 ||
+                     std::memcmp(&actual.lambda2[k], &expected.lambda2[k], 4) != 0;
+        CHECK(wrong == 0);
+    }
 }
 
 }  // namespace
@@ -220,6 +230,7 @@ TEST_CASE("4x MSAA: collect_fragments lists the reference loop's fragments for e
             samples.depth[i] = unit(rng) < 0.3f ? 1.0f : unit(rng) * 0.99f;
             samples.triangle[i] = i % 3 ? few(rng) : any(rng);  // stale where depth is 1
         }
+        samples.mark_written(0, 0, side, side);
         check_collect_matches_reference(rect, samples, triangles);
     }
     // A rasterized mesh of tiny triangles: real edges between 2-4 triangles per pixel.
@@ -237,4 +248,46 @@ TEST_CASE("4x MSAA: collect_fragments lists the reference loop's fragments for e
     raster::RasterCounters counters;
     for (std::uint32_t i = 0; i < mesh.size(); ++i) raster::rasterize_triangle_msaa(mesh[i], i, rect, samples, counters);
     check_collect_matches_reference(rect, samples, mesh);
+}
+
+// Tiles as the renderer meets them: random triangles from slivers to far
+// larger than the tile (edge values far past int32 at the pixel centres),
+// rasterized into a tile buffer reused from tile to tile (reset() clears only
+// the box written before), whole tiles and tiles cut by the image's right and
+// bottom edges, and tiles no triangle reaches: every ISA's collect_fragments
+// matches the plain loop, and the cleared samples match a fresh buffer's.
+TEST_CASE("4x MSAA: collect_fragments matches the reference loop on reused, partial, empty and large-triangle tiles") {
+    constexpr int kImage = 16000;  // not a multiple of the tile sides: partial tiles at the right and bottom
+    std::mt19937 rng(977);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int side : {8, 32, 64}) {
+        CAPTURE(side);
+        raster::TileSamples samples;  // reused, as a worker's
+        for (int round = 0; round < 24; ++round) {
+            CAPTURE(round);
+            const int last = kImage / side;  // the last, partial tile's index
+            const int tx = round % 3 == 0 ? last : int(unit(rng) * last), ty = round % 4 == 1 ? last : int(unit(rng) * last);
+            const raster::TileRect rect{tx * side, ty * side, std::min((tx + 1) * side, kImage), std::min((ty + 1) * side, kImage)};
+            std::vector<raster::RasterTriangle> triangles;
+            const int wanted = round % 6 == 5 ? 0 : 1 + int(unit(rng) * 40);  // some tiles empty
+            for (int kind = 0; int(triangles.size()) < wanted; ++kind) {
+                const float radius = std::array<float, 5>{0.7f, 5.0f, 30.0f, 900.0f, 6000.0f}[kind % 5];
+                const glm::vec2 p{rect.x0 + unit(rng) * rect.width(), rect.y0 + unit(rng) * rect.height()};
+                std::array<glm::ivec2, 3> c;
+                for (glm::ivec2& q : c)
+                    q = glm::clamp(glm::ivec2(glm::round((p + radius * glm::vec2{unit(rng) * 2 - 1, unit(rng) * 2 - 1}) * 256.0f)),
+                                   glm::ivec2(-8000 * 256), glm::ivec2((kImage + 8000) * 256));
+                if (auto t = msaa_fixed_triangle(c, kImage, {unit(rng), unit(rng), unit(rng)})) triangles.push_back(*t);
+            }
+            samples.reset(side);
+            raster::TileSamples fresh;
+            fresh.reset(side);
+            CHECK(std::memcmp(samples.depth.data(), fresh.depth.data(), samples.depth.size() * sizeof(float)) == 0);
+            raster::RasterCounters counters;
+            const simd::Isa isa = simd::best_supported_isa();
+            for (std::uint32_t i = 0; i < triangles.size(); ++i)
+                raster::rasterize_triangle_msaa(isa, triangles[i], i, rect, samples, counters);
+            check_collect_matches_reference(rect, samples, triangles);
+        }
+    }
 }
