@@ -348,6 +348,18 @@ template <int kWidth>
     rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, triangle_id, tile, buffers, counters);
 }
 
+// CornerPrefetch's prefetches of one triangle (bin_rasterizer.hpp), with the
+// frame's and the clipped vertices at bases[0] and bases[1].
+[[gnu::always_inline]] inline void prefetch_corners(const RasterTriangle& t, const std::byte* const bases[2],
+                                                    std::size_t stride) {
+    for (int k = 0; k < 3; ++k) {
+        const std::uint32_t ref = t.vertex[k];
+        const std::byte* v = bases[ref >> 31] + std::size_t(ref & ~geometry::kClippedVertexBit) * stride;
+        __builtin_prefetch(v);
+        __builtin_prefetch(v + stride - 1);
+    }
+}
+
 // What a bin entry needs in the tile, decided for a group of entries at once.
 enum TinyKind : std::int32_t { kNothing = 0, kGeneral = 1 };  // else the stamp width: 4, 8 or 16
 
@@ -359,7 +371,7 @@ enum TinyKind : std::int32_t { kNothing = 0, kGeneral = 1 };  // else the stamp 
 // other triangles may wrap and are not used).
 struct TinyGroup {
     alignas(64) std::int32_t kind[kMaxRasterLanes];
-    alignas(64) std::int32_t x_begin[kMaxRasterLanes];  // image pixels, cut to the tile
+    alignas(64) std::int32_t x_begin[kMaxRasterLanes];  // tile-relative pixels, cut to the tile
     alignas(64) std::int32_t x_end[kMaxRasterLanes];
     alignas(64) std::int32_t y_begin[kMaxRasterLanes];
     alignas(64) std::int32_t y_end[kMaxRasterLanes];
@@ -440,8 +452,9 @@ struct TinyGroup {
     const Int stamp = xsimd::select(width <= Int(4), Int(4), xsimd::select(width <= Int(8), Int(8), Int(16)));
     const auto empty = (x_begin >= x_end) | (y_begin >= y_end);
     xsimd::select(empty, Int(kNothing), xsimd::select(tiny, stamp, Int(kGeneral))).store_aligned(g.kind);
-    x_begin.store_aligned(g.x_begin), x_end.store_aligned(g.x_end);
-    y_begin.store_aligned(g.y_begin), y_end.store_aligned(g.y_end);
+    const Int tile_x0(tile.x0), tile_y0(tile.y0);
+    (x_begin - tile_x0).store_aligned(g.x_begin), (x_end - tile_x0).store_aligned(g.x_end);
+    (y_begin - tile_y0).store_aligned(g.y_begin), (y_end - tile_y0).store_aligned(g.y_end);
     // The box's first pixel centre, fixed point.
     const Int px = (x_begin << 8) + Int(128), py = (y_begin << 8) + Int(128);
     group_edge(g, 0, x1, y1, x2, y2, px, py);
@@ -452,8 +465,8 @@ struct TinyGroup {
 // Lane j of a group, a tiny triangle of stamp width kWidth, as rasterize_tiny.
 template <int kWidth>
 [[gnu::always_inline]] inline void rasterize_group_tiny(const TinyGroup& g, int j, const RasterTriangle& t,
-                                                        std::uint32_t triangle_id, const TileRect& tile,
-                                                        const TileView& view, RasterCounters& counters) {
+                                                        std::uint32_t triangle_id, const TileView& view,
+                                                        RasterCounters& counters) {
     using S = Stamp<kWidth>;
     const Int ox = lane_column<S::kColumns>(), oy = lane_row<S::kColumns>();
     StampEdges edges;
@@ -465,8 +478,7 @@ template <int kWidth>
         edges.down[k] = step_y * Int(S::kRows);
         edges.threshold[k] = Int(g.threshold[k][j]);
     }
-    rasterize_stamps<kWidth>(edges, g.x_begin[j] - tile.x0, g.x_end[j] - tile.x0, g.y_begin[j] - tile.y0,
-                             g.y_end[j] - tile.y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
+    rasterize_stamps<kWidth>(edges, g.x_begin[j], g.x_end[j], g.y_begin[j], g.y_end[j], t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
                              t.depth[2] - t.depth[0], triangle_id, view, counters);
 }
 
@@ -488,6 +500,9 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
     const TileRect local_tile = tile;
     RasterCounters local_counters = counters;
     const CornerPrefetch local_prefetch = prefetch;
+    // prefetch_corners' choice of buffer as an index (the reference's top bit) instead of a test and a move.
+    static_assert(geometry::kClippedVertexBit == 0x8000'0000u);
+    const std::byte* const corner_bases[2] = {local_prefetch.vertices, local_prefetch.clipped_vertices};
     constexpr std::size_t kLanes = Int::size;
     TinyGroup group;
     for (std::size_t first = 0; first < count; first += kLanes) {
@@ -508,18 +523,18 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
                                       local_counters);
                     break;
                 case 4:
-                    rasterize_group_tiny<4>(group, int(j), t, id_base | entry, local_tile, local_view, local_counters);
+                    rasterize_group_tiny<4>(group, int(j), t, id_base | entry, local_view, local_counters);
                     break;
                 case 8:
-                    rasterize_group_tiny<8>(group, int(j), t, id_base | entry, local_tile, local_view, local_counters);
+                    rasterize_group_tiny<8>(group, int(j), t, id_base | entry, local_view, local_counters);
                     break;
                 default:
-                    rasterize_group_tiny<16>(group, int(j), t, id_base | entry, local_tile, local_view,
+                    rasterize_group_tiny<16>(group, int(j), t, id_base | entry, local_view,
                                              local_counters);
                     break;
             }
             if (local_counters.depth_passed != passed) {
-                if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+                if (local_prefetch.vertices) prefetch_corners(t, corner_bases, local_prefetch.stride);
                 if (drawn.call) drawn.call(drawn.context, entry);
             }
         }
