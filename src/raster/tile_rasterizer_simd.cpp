@@ -504,15 +504,23 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
     static_assert(geometry::kClippedVertexBit == 0x8000'0000u);
     const std::byte* const corner_bases[2] = {local_prefetch.vertices, local_prefetch.clipped_vertices};
     constexpr std::size_t kLanes = Int::size;
-    TinyGroup group;
-    for (std::size_t first = 0; first < count; first += kLanes) {
+    // Each group is set up a group ahead of its drawing, so the entries'
+    // scalar reads of its lanes do not wait on the vector stores that just
+    // wrote them (store-to-load forwarding from wider stores), and the
+    // records' cache misses (a tile's triangles lie scattered through the
+    // chunk) overlap the drawing of the group before: no record prefetch.
+    TinyGroup groups[2];
+    if (count > 0) set_up_group(records, bin, count < kLanes ? count : kLanes, local_tile, groups[0]);
+    for (std::size_t first = 0, index = 0; first < count; first += kLanes, ++index) {
         const std::size_t in_group = count - first < kLanes ? count - first : kLanes;
-        // A tile's triangles lie scattered through the chunk: fetch the next
-        // group's records (one aligned cache line each) while this one is drawn.
-        for (std::size_t i = first + kLanes; i < first + 2 * kLanes && i < count; ++i)
-            __builtin_prefetch(&records[bin[i]]);
-        set_up_group(records, bin + first, in_group, local_tile, group);
+        const std::size_t next = first + kLanes;
+        if (next < count)
+            set_up_group(records, bin + next, count - next < kLanes ? count - next : kLanes, local_tile,
+                         groups[(index + 1) & 1]);
+        const TinyGroup& group = groups[index & 1];
         for (std::size_t j = 0; j < in_group; ++j) {
+            // Records 8 entries ahead of the one drawn (one aligned cache line each), as the set-up reads them next.
+            if (first + j + 2 * kLanes < count) __builtin_prefetch(&records[bin[first + j + 2 * kLanes]]);
             const std::uint32_t entry = bin[first + j];
             const RasterTriangle& t = records[entry];
             const std::uint64_t passed = local_counters.depth_passed;
