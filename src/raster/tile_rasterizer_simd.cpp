@@ -4,7 +4,6 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "simd/kernel_prelude.hpp"
 #include "simd/lane_helpers.hpp"
@@ -348,140 +347,6 @@ template <int kWidth>
     rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, triangle_id, tile, buffers, counters);
 }
 
-// CornerPrefetch's prefetches of one triangle (bin_rasterizer.hpp), with the
-// frame's and the clipped vertices at bases[0] and bases[1].
-[[gnu::always_inline]] inline void prefetch_corners(const RasterTriangle& t, const std::byte* const bases[2],
-                                                    std::size_t stride) {
-    for (int k = 0; k < 3; ++k) {
-        const std::uint32_t ref = t.vertex[k];
-        const std::byte* v = bases[ref >> 31] + std::size_t(ref & ~geometry::kClippedVertexBit) * stride;
-        __builtin_prefetch(v);
-        __builtin_prefetch(v + stride - 1);
-    }
-}
-
-// What a bin entry needs in the tile, decided for a group of entries at once.
-enum TinyKind : std::int32_t { kNothing = 0, kGeneral = 1 };  // else the stamp width: 4, 8 or 16
-
-// The set-up of up to Int::size bin entries, lane j for entry j of the group,
-// in one vector operation each: the box cut to the tile, whether the triangle
-// is tiny, and each edge's value at the box's first pixel centre, its steps
-// and its top-left threshold, as rasterize_tiny's int32 arithmetic would
-// give them lane by lane (products of the same exact int32 terms; lanes of
-// other triangles may wrap and are not used).
-struct TinyGroup {
-    alignas(64) std::int32_t kind[kMaxRasterLanes];
-    alignas(64) std::int32_t x_begin[kMaxRasterLanes];  // tile-relative pixels, cut to the tile
-    alignas(64) std::int32_t x_end[kMaxRasterLanes];
-    alignas(64) std::int32_t y_begin[kMaxRasterLanes];
-    alignas(64) std::int32_t y_end[kMaxRasterLanes];
-    alignas(64) std::int32_t e[3][kMaxRasterLanes];          // E at the box's first pixel centre
-    alignas(64) std::int32_t step_x[3][kMaxRasterLanes];     // per pixel right
-    alignas(64) std::int32_t step_y[3][kMaxRasterLanes];     // per pixel down
-    alignas(64) std::int32_t threshold[3][kMaxRasterLanes];  // inside where E > threshold
-};
-
-// Edge k from corner a to corner b, for every lane of the group.
-[[gnu::always_inline]] inline void group_edge(TinyGroup& g, int k, const Int& ax, const Int& ay, const Int& bx,
-                                              const Int& by, const Int& px, const Int& py) {
-    const Int dx = bx - ax, dy = by - ay;
-    (dx * (py - ay) - dy * (px - ax)).store_aligned(g.e[k]);
-    (dy * Int(-256)).store_aligned(g.step_x[k]);
-    (dx << 8).store_aligned(g.step_y[k]);
-    (((dy << 13) - dx) >> 31).store_aligned(g.threshold[k]);  // as tiny_edge
-}
-
-// The first 32 bytes of the records of entries bin[0..count) (count <=
-// Int::size), one vector per int32 field, lane j for entry j: x0 x1 x2 y0 y1
-// y2, then px_min | px_max << 16 and py_min | py_max << 16. Lanes past the
-// bin's end repeat its first entry (never drawn).
-[[gnu::always_inline]] inline void load_group(const RasterTriangle* records, const std::uint32_t* bin,
-                                              std::size_t count, Int field[8]) {
-    static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) == 12 &&
-                  offsetof(RasterTriangle, px_min) == 24 && offsetof(RasterTriangle, py_min) == 28);
-#if XSIMD_WITH_AVX2 && !XSIMD_WITH_AVX512F
-    // An 8 × 8 transpose of int32: 8 loads and 24 shuffles instead of 64 scalar loads and stores.
-    __m256i r[8];
-    for (std::size_t j = 0; j < 8; ++j)
-        r[j] = _mm256_load_si256(reinterpret_cast<const __m256i*>(&records[bin[j < count ? j : 0]]));
-    __m256i t[8], u[8];
-    for (int j = 0; j < 8; j += 2) {
-        t[j] = _mm256_unpacklo_epi32(r[j], r[j + 1]);
-        t[j + 1] = _mm256_unpackhi_epi32(r[j], r[j + 1]);
-    }
-    for (int j = 0; j < 8; j += 4) {
-        u[j] = _mm256_unpacklo_epi64(t[j], t[j + 2]);
-        u[j + 1] = _mm256_unpackhi_epi64(t[j], t[j + 2]);
-        u[j + 2] = _mm256_unpacklo_epi64(t[j + 1], t[j + 3]);
-        u[j + 3] = _mm256_unpackhi_epi64(t[j + 1], t[j + 3]);
-    }
-    for (int f = 0; f < 4; ++f) {
-        field[f] = _mm256_permute2x128_si256(u[f], u[f + 4], 0x20);
-        field[f + 4] = _mm256_permute2x128_si256(u[f], u[f + 4], 0x31);
-    }
-#else
-    constexpr int kLanes = int(Int::size);
-    alignas(64) std::int32_t lanes[8][kMaxRasterLanes];
-    for (int j = 0; j < kLanes; ++j) {
-        std::int32_t words[8];
-        std::memcpy(words, &records[bin[std::size_t(j) < count ? j : 0]], sizeof(words));
-        for (int f = 0; f < 8; ++f) lanes[f][j] = words[f];
-    }
-    for (int f = 0; f < 8; ++f) field[f] = Int::load_aligned(lanes[f]);
-#endif
-}
-
-// Entries bin[0..count) (count <= Int::size) of `records` against the tile.
-[[gnu::always_inline]] inline void set_up_group(const RasterTriangle* records, const std::uint32_t* bin,
-                                                std::size_t count, const TileRect& tile, TinyGroup& g) {
-    Int field[8];
-    load_group(records, bin, count, field);
-    const Int x0 = field[0], x1 = field[1], x2 = field[2], y0 = field[3], y1 = field[4], y2 = field[5];
-    // The int16 pixel box, sign-extended.
-    const Int px_min = (field[6] << 16) >> 16, px_max = field[6] >> 16;
-    const Int py_min = (field[7] << 16) >> 16, py_max = field[7] >> 16;
-    const Int x_begin = xsimd::max(px_min, Int(tile.x0));
-    const Int x_end = xsimd::min(px_max + Int(1), Int(tile.x1));
-    const Int y_begin = xsimd::max(py_min, Int(tile.y0));
-    const Int y_end = xsimd::min(py_max + Int(1), Int(tile.y1));
-    const Int width = x_end - x_begin;
-    const Int span(kTinySpan);
-    const auto tiny = (xsimd::abs(x0 - x1) < span) & (xsimd::abs(x1 - x2) < span) & (xsimd::abs(x2 - x0) < span) &
-                      (xsimd::abs(y0 - y1) < span) & (xsimd::abs(y1 - y2) < span) & (xsimd::abs(y2 - y0) < span) &
-                      (width <= Int(kMaxTinyWidth));
-    const Int stamp = xsimd::select(width <= Int(4), Int(4), xsimd::select(width <= Int(8), Int(8), Int(16)));
-    const auto empty = (x_begin >= x_end) | (y_begin >= y_end);
-    xsimd::select(empty, Int(kNothing), xsimd::select(tiny, stamp, Int(kGeneral))).store_aligned(g.kind);
-    const Int tile_x0(tile.x0), tile_y0(tile.y0);
-    (x_begin - tile_x0).store_aligned(g.x_begin), (x_end - tile_x0).store_aligned(g.x_end);
-    (y_begin - tile_y0).store_aligned(g.y_begin), (y_end - tile_y0).store_aligned(g.y_end);
-    // The box's first pixel centre, fixed point.
-    const Int px = (x_begin << 8) + Int(128), py = (y_begin << 8) + Int(128);
-    group_edge(g, 0, x1, y1, x2, y2, px, py);
-    group_edge(g, 1, x2, y2, x0, y0, px, py);
-    group_edge(g, 2, x0, y0, x1, y1, px, py);
-}
-
-// Lane j of a group, a tiny triangle of stamp width kWidth, as rasterize_tiny.
-template <int kWidth>
-[[gnu::always_inline]] inline void rasterize_group_tiny(const TinyGroup& g, int j, const RasterTriangle& t,
-                                                        std::uint32_t triangle_id, const TileView& view,
-                                                        RasterCounters& counters) {
-    using S = Stamp<kWidth>;
-    const Int ox = lane_column<S::kColumns>(), oy = lane_row<S::kColumns>();
-    StampEdges edges;
-    for (int k = 0; k < 3; ++k) {
-        const Int step_x(g.step_x[k][j]), step_y(g.step_y[k][j]);
-        edges.e[k] = Int(g.e[k][j]) + ox * step_x;
-        if constexpr (S::kRows > 1) edges.e[k] += oy * step_y;
-        edges.across[k] = step_x * Int(S::kLanes);
-        edges.down[k] = step_y * Int(S::kRows);
-        edges.threshold[k] = Int(g.threshold[k][j]);
-    }
-    rasterize_stamps<kWidth>(edges, g.x_begin[j], g.x_end[j], g.y_begin[j], g.y_end[j], t.inv_area, t.depth[0], t.depth[1] - t.depth[0],
-                             t.depth[2] - t.depth[0], triangle_id, view, counters);
-}
-
 }  // namespace
 
 void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
@@ -500,50 +365,17 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
     const TileRect local_tile = tile;
     RasterCounters local_counters = counters;
     const CornerPrefetch local_prefetch = prefetch;
-    // prefetch_corners' choice of buffer as an index (the reference's top bit) instead of a test and a move.
-    static_assert(geometry::kClippedVertexBit == 0x8000'0000u);
-    const std::byte* const corner_bases[2] = {local_prefetch.vertices, local_prefetch.clipped_vertices};
-    constexpr std::size_t kLanes = Int::size;
-    // Entries are set up kGroups groups at a time, then drawn: the loops'
-    // exits (mispredicted once per run of the loop) come once per block, not
-    // once per group, and no entry reads a lane the vector stores just wrote.
-    constexpr std::size_t kGroups = 4, kBlock = kGroups * kLanes;
-    TinyGroup groups[kGroups];
-    for (std::size_t first = 0; first < count; first += kBlock) {
-        const std::size_t in_block = count - first < kBlock ? count - first : kBlock;
-        for (std::size_t g = 0; g * kLanes < in_block; ++g)
-            set_up_group(records, bin + first + g * kLanes,
-                         in_block - g * kLanes < kLanes ? in_block - g * kLanes : kLanes, local_tile, groups[g]);
-        for (std::size_t i = 0; i < in_block; ++i) {
-            // A tile's triangles lie scattered through the chunk: fetch the
-            // next block's records (one aligned cache line each) ahead of its set-up.
-            if (first + i + kBlock < count) __builtin_prefetch(&records[bin[first + i + kBlock]]);
-            const TinyGroup& group = groups[i / kLanes];
-            const std::size_t j = i % kLanes;
-            const std::uint32_t entry = bin[first + i];
-            const RasterTriangle& t = records[entry];
-            const std::uint64_t passed = local_counters.depth_passed;
-            switch (group.kind[j]) {
-                case kNothing: continue;
-                case kGeneral:
-                    rasterize_general(simd::Isa::TESSERA_SIMD_SUFFIX, t, id_base | entry, local_tile, buffers,
-                                      local_counters);
-                    break;
-                case 4:
-                    rasterize_group_tiny<4>(group, int(j), t, id_base | entry, local_view, local_counters);
-                    break;
-                case 8:
-                    rasterize_group_tiny<8>(group, int(j), t, id_base | entry, local_view, local_counters);
-                    break;
-                default:
-                    rasterize_group_tiny<16>(group, int(j), t, id_base | entry, local_view,
-                                             local_counters);
-                    break;
-            }
-            if (local_counters.depth_passed != passed) {
-                if (local_prefetch.vertices) prefetch_corners(t, corner_bases, local_prefetch.stride);
-                if (drawn.call) drawn.call(drawn.context, entry);
-            }
+    for (std::size_t i = 0; i < count; ++i) {
+        // A tile's triangles lie scattered through the chunk: fetch ahead
+        // (records are one aligned cache line each).
+        constexpr std::size_t kPrefetchDistance = 8;
+        if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
+        const RasterTriangle& t = records[bin[i]];
+        const std::uint64_t passed = local_counters.depth_passed;
+        rasterize_one(t, id_base | bin[i], local_tile, buffers, local_view, local_counters);
+        if (local_counters.depth_passed != passed) {
+            if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+            if (drawn.call) drawn.call(drawn.context, bin[i]);
         }
     }
     counters = local_counters;
