@@ -167,6 +167,54 @@ TEST_CASE("a bin of the jittered shared-edge mesh with a second layer crossing i
     }
 }
 
+// The kernels set a bin up a vector of entries at a time (4, 8 or 16): bins
+// of every length up to past two AVX-512 vectors, each group mixing entries
+// whose box misses the tile, big triangles (the general path), tiny ones cut
+// by the tile's sides or inside it, 4, 8 and 16 px wide, ties in depth and
+// repeated entries (LESS keeps the first), and lanes past the bin's end.
+TEST_CASE("bins of every length, groups mixing missed, big and tiny triangles, match the scalar loop") {
+    std::mt19937 rng(2024);
+    constexpr int kImage = 128;
+    const raster::TileRect tile{32, 64, 64, 96};
+    std::uniform_int_distribution<int> near_tile(24 * 256, 72 * 256), reach(0, raster::kTinySpan - 1);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<raster::RasterTriangle> records;
+    int missed = 0, big = 0, tiny_in_tile = 0;
+    while (records.size() < 400) {
+        const int kind = int(records.size() % 5);
+        glm::ivec2 a{near_tile(rng), near_tile(rng) + 32 * 256};
+        std::uniform_int_distribution<int> offset(0, kind == 4 ? 40 * 256 : kind == 3 ? reach.max() : 6 * 256);
+        std::array<glm::ivec2, 3> p{a, a + glm::ivec2{offset(rng), offset(rng)}, a + glm::ivec2{offset(rng), offset(rng)}};
+        if (kind == 1) p[1].y = p[0].y, p[2] = p[2] / 256 * 256 + 128;  // a horizontal edge, a corner on a centre
+        const std::array<float, 3> depth = kind == 2 ? std::array<float, 3>{0.25f, 0.25f, 0.25f}
+                                                     : std::array<float, 3>{unit(rng), unit(rng), unit(rng)};
+        const auto t = test::fixed_triangle(p, kImage, depth);
+        if (!t) continue;
+        const bool misses = t->px_max < tile.x0 || t->px_min >= tile.x1 || t->py_max < tile.y0 || t->py_min >= tile.y1;
+        const bool wide = t->px_max - t->px_min + 1 > raster::kMaxTinyWidth;
+        missed += misses, big += wide && !misses, tiny_in_tile += !misses && !wide;
+        records.push_back(*t);
+    }
+    CHECK(missed > 20);
+    CHECK(big > 20);
+    CHECK(tiny_in_tile > 100);
+    std::uniform_int_distribution<std::uint32_t> entry(0, std::uint32_t(records.size() - 1));
+    for (std::size_t length = 1; length <= 40; ++length) {
+        CAPTURE(length);
+        // The first entry draws something (check_every_isa asks for it); the others anything, repeats included.
+        std::vector<std::uint32_t> bin;
+        while (bin.empty()) {
+            const std::uint32_t first = entry(rng);
+            const auto& t = records[first];
+            if (t.px_max >= tile.x0 && t.px_min < tile.x1 && t.py_max >= tile.y0 && t.py_min < tile.y1 &&
+                t.px_max - t.px_min < 8)
+                bin.push_back(first);
+        }
+        while (bin.size() < length) bin.push_back(entry(rng) % 7 == 0 && bin.size() > 1 ? bin[bin.size() - 2] : entry(rng));
+        check_every_isa(records, bin, 3u << 17, tile);
+    }
+}
+
 TEST_CASE("the corner prefetch finds a reference's vertex in the frame's vertices or the clipped ones") {
     const std::vector<geometry::ShadedVertex> frame(10), clipped(4);
     const raster::CornerPrefetch prefetch{reinterpret_cast<const std::byte*>(frame.data()),
