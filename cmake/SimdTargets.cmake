@@ -17,6 +17,22 @@ set(TESSERA_SIMD_ARCH_sse4 "xsimd::sse4_2")
 set(TESSERA_SIMD_ARCH_avx2 "xsimd::fma3<xsimd::avx2>")
 set(TESSERA_SIMD_ARCH_avx512 "xsimd::avx512bw")
 
+# A test build for machines without AVX-512 (cf. tools/check_avx512_emulated.sh):
+# the avx512 copies are compiled for x86-64-v3 with SIMDe's portable AVX-512
+# intrinsics (src/simd/avx512_emulation.hpp), and the run-time ISA detection
+# reports avx512 as available, so the every-ISA tests run those copies too.
+# Never for a release: the emulated kernels are slow, and they test the kernels'
+# logic, not the compiler's real AVX-512 code.
+option(TESSERA_EMULATE_AVX512 "Test build: run the AVX-512 kernels on any x86-64-v3 CPU through SIMDe emulation" OFF)
+if(TESSERA_EMULATE_AVX512)
+  find_path(TESSERA_SIMDE_INCLUDE_DIR simde/x86/avx512.h)
+  if(NOT TESSERA_SIMDE_INCLUDE_DIR)
+    message(FATAL_ERROR "TESSERA_EMULATE_AVX512 needs SIMDe (Debian: apt-get install libsimde-dev)")
+  endif()
+  set(TESSERA_SIMD_MARCH_avx512 x86-64-v3)
+  message(STATUS "AVX-512 kernels: emulated with SIMDe (${TESSERA_SIMDE_INCLUDE_DIR}); test build only")
+endif()
+
 function(tessera_add_simd_kernels target)
   cmake_parse_arguments(ARG "NO_FP_CONTRACT" "" "SOURCES;LINK" ${ARGN})
   # The lowest ISA comes first in link order: inline functions shared between
@@ -33,6 +49,18 @@ function(tessera_add_simd_kernels target)
       -march=${TESSERA_SIMD_MARCH_${level}} -mtune=generic
       # g++ 12 warns falsely inside avx512fintrin.h, and cannot build AVX-512 code at -O0.
       -Wno-maybe-uninitialized $<$<CONFIG:Debug>:-Og>)
+    if(TESSERA_EMULATE_AVX512 AND level STREQUAL "avx512")
+      target_compile_definitions(${obj} PRIVATE TESSERA_EMULATE_AVX512)
+      target_include_directories(${obj} SYSTEM PRIVATE ${TESSERA_SIMDE_INCLUDE_DIR})
+      # 512-bit vector arguments without AVX-512 change the ABI (-Wpsabi): they are
+      # only passed between inline functions of one object here.
+      # -ffp-contract=off: SIMDe splits each 512-bit operation into two 256-bit
+      # ones through unions, and g++ then fuses a*b + c into an FMA in some
+      # inlined copies of an expression and not in others, so two paths of one
+      # kernel that the real build keeps bit-identical differ in the last bit
+      # (seen in shade_fragment_runs vs shade_fragments). Explicit fma() stays fused.
+      target_compile_options(${obj} PRIVATE -Wno-psabi -ffp-contract=off)
+    endif()
     if(ARG_NO_FP_CONTRACT)
       target_compile_options(${obj} PRIVATE -ffp-contract=off)
     endif()

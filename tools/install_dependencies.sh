@@ -27,6 +27,8 @@ if [ "${1:-all}" != render ]; then
     slurmctld slurmd slurm-client munge python3 procps
     # tessera check's report tested in a real browser (tests/check/report_browser_test.py).
     chromium python3
+    # The AVX-512 kernels run emulated on CPUs without AVX-512 (tools/check_avx512_emulated.sh).
+    libsimde-dev
   )
 fi
 missing=()

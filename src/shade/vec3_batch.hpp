@@ -48,7 +48,12 @@ inline Vec3 normalize(const Vec3& a) { return a * inverse_length(a); }
 // would fall differently.
 inline Batch length_squared_unfused(const Vec3& a) {
     Batch x = a.x * a.x, y = a.y * a.y, z = a.z * a.z;
+#if defined(TESSERA_EMULATE_AVX512)
+    // Emulated 512-bit batches live in no single register (simd/avx512_emulation.hpp).
+    asm("" : "+m"(x.data), "+m"(y.data), "+m"(z.data));
+#else
     asm("" : "+x"(x.data), "+x"(y.data), "+x"(z.data));
+#endif
     return (x + y) + z;
 }
 

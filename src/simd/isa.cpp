@@ -32,6 +32,11 @@ IsaSupport detect_isa_support() {
     s.sse4 = arch.sse4_2 && v2;
     s.avx2 = arch.fma3_avx2 && v3;
     s.avx512 = arch.avx512bw && v4;
+#if defined(TESSERA_EMULATE_AVX512)
+    // This build's avx512 copies are x86-64-v3 code calling SIMDe's emulated
+    // AVX-512 intrinsics (cmake/SimdTargets.cmake): they run wherever avx2 does.
+    s.avx512 = s.avx2;
+#endif
     return s;
 }
 
