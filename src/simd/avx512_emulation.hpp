@@ -74,6 +74,22 @@ inline simde__m512i cvttps_epi32(simde__m512 a) {
     return simde__m512i_from_private(out);
 }
 
+// VCVTDQ2PD: exact.
+inline simde__m512d cvtepi32_pd(simde__m256i a) {
+    const simde__m256i_private in = simde__m256i_to_private(a);
+    simde__m512d_private out;
+    for (int i = 0; i < 8; ++i) out.f64[i] = static_cast<double>(in.i32[i]);
+    return simde__m512d_from_private(out);
+}
+
+// VPMOVZXWD: exact.
+inline simde__m512i cvtepu16_epi32(simde__m256i a) {
+    const simde__m256i_private in = simde__m256i_to_private(a);
+    simde__m512i_private out;
+    for (int i = 0; i < 16; ++i) out.i32[i] = static_cast<std::int32_t>(in.u16[i]);
+    return simde__m512i_from_private(out);
+}
+
 inline simde__m256 cvtpd_ps(simde__m512d a) {
     const simde__m512d_private in = simde__m512d_to_private(a);
     simde__m256_private out;
@@ -140,6 +156,8 @@ inline simde__m512 rsqrt14_ps(simde__m512 a) {
 #define _mm512_cvtps_epi32(a) ::tessera::simd::emulated::cvtps_epi32(a)
 #define _mm512_cvttps_epi32(a) ::tessera::simd::emulated::cvttps_epi32(a)
 #define _mm512_cvtpd_ps(a) ::tessera::simd::emulated::cvtpd_ps(a)
+#define _mm512_cvtepi32_pd(a) ::tessera::simd::emulated::cvtepi32_pd(a)
+#define _mm512_cvtepu16_epi32(a) ::tessera::simd::emulated::cvtepu16_epi32(a)
 #define _mm512_srai_epi32(a, count) ::tessera::simd::emulated::srai_epi32((a), (count))
 #define _mm512_cmp_epi32_mask(a, b, predicate) ::tessera::simd::emulated::cmp_epi32_mask((a), (b), (predicate))
 #define _mm512_i32gather_epi32(index, base, scale) \

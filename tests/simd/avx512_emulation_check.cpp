@@ -66,6 +66,14 @@ int avx512_emulation_mismatches(std::string& first) {
         const __m512 converted = _mm512_cvtepi32_ps(vk);
         expect(same_bytes(low_ps(converted), _mm256_cvtepi32_ps(low_si(vk))) &&
                    same_bytes(high_ps(converted), _mm256_cvtepi32_ps(high_si(vk))), "_mm512_cvtepi32_ps");
+        const __m512d widened = _mm512_cvtepi32_pd(low_si(vk));
+        expect(same_bytes(simde_mm512_extractf64x4_pd(widened, 0), _mm256_cvtepi32_pd(_mm256_castsi256_si128(low_si(vk)))) &&
+                   same_bytes(simde_mm512_extractf64x4_pd(widened, 1), _mm256_cvtepi32_pd(_mm256_extracti128_si256(low_si(vk), 1))),
+               "_mm512_cvtepi32_pd");
+        const __m512i zero_extended = _mm512_cvtepu16_epi32(high_si(vk));
+        expect(same_bytes(low_si(zero_extended), _mm256_cvtepu16_epi32(_mm256_castsi256_si128(high_si(vk)))) &&
+                   same_bytes(high_si(zero_extended), _mm256_cvtepu16_epi32(_mm256_extracti128_si256(high_si(vk), 1))),
+               "_mm512_cvtepu16_epi32");
         const __m256 narrowed = _mm512_cvtpd_ps(vd);
         expect(same_bytes(narrowed, _mm256_set_m128(_mm256_cvtpd_ps(_mm256_load_pd(d + 4)), _mm256_cvtpd_ps(_mm256_load_pd(d)))),
                "_mm512_cvtpd_ps");
