@@ -46,16 +46,22 @@ std::span<const std::uint32_t> ChunkBins::tile(int t) const {
 // pass: the per-tile scratch is 0 between builds, so it is not cleared.
 void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> triangles) {
     constexpr std::uint32_t kSeveralTiles = ~std::uint32_t{0};
-    if (scratch_dirty || tile_scratch.size() != std::size_t(grid.tile_count()))
-        tile_scratch.assign(std::size_t(grid.tile_count()), 0);
+    const std::size_t tile_count = std::size_t(grid.tile_count());
+    if (scratch_dirty || tile_scratch.size() != tile_count) tile_scratch.assign(tile_count, 0);
+    touched_scratch.resize(tile_count + 1);  // + the slot add() writes after the last new tile
     scratch_dirty = true;
-    std::vector<std::uint32_t>& count = tile_scratch;
-    tiles.clear();
+    // Plain pointers and no call in the loops (a push_back there made g++
+    // reload the loops' state after every tile).
+    std::uint32_t* const count = tile_scratch.data();
+    std::uint32_t* const touched = touched_scratch.data();
+    std::size_t touched_count = 0;
     const auto add = [&](std::uint32_t tile, std::uint32_t n) {
-        if (count[tile] == 0) tiles.push_back(tile);
+        touched[touched_count] = tile;  // kept if new
+        touched_count += std::size_t(count[tile] == 0);
         count[tile] += n;
     };
     triangle_tile.resize(triangles.size());
+    std::uint32_t* const tile_of = triangle_tile.data();
     std::uint32_t run_tile = 0, run_length = 0;  // consecutive one-tile triangles counted, not yet in count
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const RasterTriangle& t = triangles[i];
@@ -63,18 +69,19 @@ void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> tria
         const int ty0 = t.py_min >> grid.tile_shift, ty1 = t.py_max >> grid.tile_shift;
         if (tx0 == tx1 && ty0 == ty1) {
             const std::uint32_t tile = std::uint32_t(ty0 * grid.tiles_x + tx0);
-            triangle_tile[i] = tile;
+            tile_of[i] = tile;
             if (tile != run_tile) {
                 if (run_length != 0) add(run_tile, run_length);
                 run_tile = tile, run_length = 0;
             }
             ++run_length;
         } else {
-            triangle_tile[i] = kSeveralTiles;
+            tile_of[i] = kSeveralTiles;
             for_each_tile(grid, t, [&](int tile) { add(std::uint32_t(tile), 1); });
         }
     }
     if (run_length != 0) add(run_tile, run_length);
+    tiles.assign(touched, touched + touched_count);
     std::sort(tiles.begin(), tiles.end());
     // Counts → each touched tile's start, which count then holds as its cursor.
     starts.resize(tiles.size() + 1);
@@ -84,20 +91,21 @@ void ChunkBins::build(const TileGrid& grid, std::span<const RasterTriangle> tria
         count[tiles[i]] = starts[i];
     }
     items.resize(starts.back());
-    std::vector<std::uint32_t>& cursor = tile_scratch;
+    std::uint32_t* const item = items.data();
+    std::uint32_t* const cursor = tile_scratch.data();
     std::uint32_t cursor_tile = kSeveralTiles, run_cursor = 0;  // the current run's cursor, not yet in `cursor`
     for (std::uint32_t i = 0; i < triangles.size(); ++i) {
-        const std::uint32_t tile = triangle_tile[i];
+        const std::uint32_t tile = tile_of[i];
         if (tile == kSeveralTiles) {  // its tiles' cursors must be in `cursor`
             if (cursor_tile != kSeveralTiles) cursor[cursor_tile] = run_cursor, cursor_tile = kSeveralTiles;
-            for_each_tile(grid, triangles[i], [&](int several) { items[cursor[several]++] = i; });
+            for_each_tile(grid, triangles[i], [&](int several) { item[cursor[several]++] = i; });
             continue;
         }
         if (tile != cursor_tile) {
             if (cursor_tile != kSeveralTiles) cursor[cursor_tile] = run_cursor;
             cursor_tile = tile, run_cursor = cursor[tile];
         }
-        items[run_cursor++] = i;
+        item[run_cursor++] = i;
     }
     for (const std::uint32_t tile : tiles) cursor[tile] = 0;
     scratch_dirty = false;

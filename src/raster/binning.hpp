@@ -37,6 +37,7 @@ struct ChunkBins {
     // tile of the grid a count, then a cursor, back to 0 at the end of build().
     std::vector<std::uint32_t> triangle_tile;
     std::vector<std::uint32_t> tile_scratch;
+    std::vector<std::uint32_t> touched_scratch;  // the touched tiles, in the order first met
     bool scratch_dirty = false;  // build() stopped part way (an allocation threw)
 
     // The bin of the i-th touched tile, and that of any tile (empty if untouched).

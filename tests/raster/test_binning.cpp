@@ -99,8 +99,10 @@ static std::vector<raster::RasterTriangle> random_boxes(std::mt19937& rng, int w
 TEST_CASE("a chunk's bins list only touched tiles, ascending, and stay right when the grid changes") {
     std::mt19937 rng(11);
     raster::ChunkBins bins;
-    // A small grid, a larger one, the small one again: the per-tile scratch is resized and must read 0.
-    for (const auto& [width, height, side] : {std::tuple{200, 120, 16}, std::tuple{640, 360, 32}, std::tuple{200, 120, 16}}) {
+    // A small grid, a larger one, the small one again: the per-tile scratch is resized and must read 0;
+    // then 4 tiles, every one touched long before the last triangle.
+    for (const auto& [width, height, side] :
+         {std::tuple{200, 120, 16}, std::tuple{640, 360, 32}, std::tuple{200, 120, 16}, std::tuple{64, 64, 32}}) {
         const raster::TileGrid grid(width, height, side);
         const std::vector<raster::RasterTriangle> triangles = random_boxes(rng, width, height, 400);
         bins.build(grid, triangles);
