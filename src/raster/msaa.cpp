@@ -83,10 +83,6 @@ struct PixelPatterns {
 };
 constexpr PixelPatterns kPixelPatterns;
 
-}  // namespace
-
-namespace {
-
 // Where list_fragments() reads and writes, as plain pointers: g++ would
 // reload the vectors' data pointers after every store (they might alias).
 struct FragmentListing {

@@ -35,6 +35,7 @@
 #include <simde/x86/avx512.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -42,11 +43,20 @@
 // round to nearest even, exceptions masked).
 namespace tessera::simd::emulated {
 
-inline simde__m512 cvtepi32_ps(simde__m512i a) {
-    const simde__m512i_private in = simde__m512i_to_private(a);
-    simde__m512_private out;
-    for (int i = 0; i < 16; ++i) out.f32[i] = static_cast<float>(in.i32[i]);
-    return simde__m512_from_private(out);
+// Each lane of `a` (of type In) converted by static_cast to Out: VCVTDQ2PS,
+// VCVTDQ2PD, VPMOVZXWD and VCVTPD2PS, whose lanes C++'s conversions round as
+// the instructions do (to nearest even; int32 → double and uint16 → int32 exact).
+template <class In, class Out, class OutVector, class InVector>
+OutVector convert_lanes(InVector a) {
+    constexpr std::size_t kLanes = sizeof(OutVector) / sizeof(Out);
+    static_assert(sizeof(InVector) >= kLanes * sizeof(In));
+    In in[kLanes];
+    Out out[kLanes];
+    std::memcpy(in, &a, sizeof in);
+    for (std::size_t i = 0; i < kLanes; ++i) out[i] = static_cast<Out>(in[i]);
+    OutVector result;
+    std::memcpy(&result, out, sizeof result);
+    return result;
 }
 
 // VCVTPS2DQ: out of range and NaN give the "integer indefinite" 0x80000000.
@@ -72,29 +82,6 @@ inline simde__m512i cvttps_epi32(simde__m512 a) {
                          : INT32_MIN;
     }
     return simde__m512i_from_private(out);
-}
-
-// VCVTDQ2PD: exact.
-inline simde__m512d cvtepi32_pd(simde__m256i a) {
-    const simde__m256i_private in = simde__m256i_to_private(a);
-    simde__m512d_private out;
-    for (int i = 0; i < 8; ++i) out.f64[i] = static_cast<double>(in.i32[i]);
-    return simde__m512d_from_private(out);
-}
-
-// VPMOVZXWD: exact.
-inline simde__m512i cvtepu16_epi32(simde__m256i a) {
-    const simde__m256i_private in = simde__m256i_to_private(a);
-    simde__m512i_private out;
-    for (int i = 0; i < 16; ++i) out.i32[i] = static_cast<std::int32_t>(in.u16[i]);
-    return simde__m512i_from_private(out);
-}
-
-inline simde__m256 cvtpd_ps(simde__m512d a) {
-    const simde__m512d_private in = simde__m512d_to_private(a);
-    simde__m256_private out;
-    for (int i = 0; i < 8; ++i) out.f32[i] = static_cast<float>(in.f64[i]);
-    return simde__m256_from_private(out);
 }
 
 // VPSRAD: a count above 31 fills with the sign bit.
@@ -152,12 +139,12 @@ inline simde__m512 rsqrt14_ps(simde__m512 a) {
 // Missing from SIMDe 0.7.4.
 #define _mm512_extractf32x8_ps(a, imm) \
     simde_mm256_castpd_ps(simde_mm512_extractf64x4_pd(simde_mm512_castps_pd(a), (imm)))
-#define _mm512_cvtepi32_ps(a) ::tessera::simd::emulated::cvtepi32_ps(a)
+#define _mm512_cvtepi32_ps(a) (::tessera::simd::emulated::convert_lanes<std::int32_t, float, simde__m512>(a))
 #define _mm512_cvtps_epi32(a) ::tessera::simd::emulated::cvtps_epi32(a)
 #define _mm512_cvttps_epi32(a) ::tessera::simd::emulated::cvttps_epi32(a)
-#define _mm512_cvtpd_ps(a) ::tessera::simd::emulated::cvtpd_ps(a)
-#define _mm512_cvtepi32_pd(a) ::tessera::simd::emulated::cvtepi32_pd(a)
-#define _mm512_cvtepu16_epi32(a) ::tessera::simd::emulated::cvtepu16_epi32(a)
+#define _mm512_cvtpd_ps(a) (::tessera::simd::emulated::convert_lanes<double, float, simde__m256>(a))
+#define _mm512_cvtepi32_pd(a) (::tessera::simd::emulated::convert_lanes<std::int32_t, double, simde__m512d>(a))
+#define _mm512_cvtepu16_epi32(a) (::tessera::simd::emulated::convert_lanes<std::uint16_t, std::int32_t, simde__m512i>(a))
 #define _mm512_srai_epi32(a, count) ::tessera::simd::emulated::srai_epi32((a), (count))
 #define _mm512_cmp_epi32_mask(a, b, predicate) ::tessera::simd::emulated::cmp_epi32_mask((a), (b), (predicate))
 #define _mm512_i32gather_epi32(index, base, scale) \

@@ -4,12 +4,12 @@
 // in an anonymous namespace, so the copies never meet at link time.
 #pragma once
 
-// g++ 12 warns that _mm512_undefined_ps() & co. are "used uninitialized" once
-// xsimd's exp/log are inlined: false positives inside the system header.
 #if defined(TESSERA_EMULATE_AVX512)
 #include "simd/avx512_emulation.hpp"  // the avx512 copy of a -DTESSERA_EMULATE_AVX512=ON build
 #endif
 
+// g++ 12 warns that _mm512_undefined_ps() & co. are "used uninitialized" once
+// xsimd's exp/log are inlined: false positives inside the system header.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #include <xsimd/xsimd.hpp>
