@@ -5,10 +5,9 @@
 #include <cstdlib>
 #include <cstring>
 
-#include <emmintrin.h>
-
 #include "raster/msaa_fragment_kernels.hpp"
 #include "raster/msaa_kernels.hpp"
+#include "raster/msaa_list_kernel.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_in_tile.hpp"
 
@@ -39,131 +38,29 @@ void TileFragments::reserve(int tile_side) {
     count = 0;
 }
 
-namespace {
-
-// What list_fragments() does with a pixel, by which samples are covered (bits
-// 0-3) and which pairs of samples have the same triangle id (bits 4-9: 01, 02,
-// 03, 12, 13, 23), worked out once by the reference loop's rule: a covered
-// sample takes the fragment of the first earlier covered sample with its
-// triangle, else a new one. The 1024 keys have few distinct patterns: a byte
-// per key names one, so both tables stay in L1 beside the tile's samples.
-struct PixelPattern {
-    std::int32_t fragment[kMsaaSamples];  // offset from the pixel's first fragment; -1: background
-    std::uint8_t first_sample[kMsaaSamples];  // the sample each new fragment starts at (0 past the last)
-    std::uint32_t new_fragments;
-    constexpr bool operator==(const PixelPattern&) const = default;
-};
-struct PixelPatterns {
-    static constexpr int kMaxDistinct = 128;
-    PixelPattern pattern[kMaxDistinct];
-    std::uint8_t of_key[1 << 10];
-    int distinct = 0;
-    constexpr PixelPatterns() : pattern{}, of_key{} {
-        constexpr int kPair[4][4] = {{-1, 0, 1, 2}, {0, -1, 3, 4}, {1, 3, -1, 5}, {2, 4, 5, -1}};
-        for (int key = 0; key < (1 << 10); ++key) {
-            PixelPattern p{};
-            int fragments = 0;
-            for (int s = 0; s < kMsaaSamples; ++s) {
-                p.fragment[s] = -1;
-                if (!((key >> s) & 1)) continue;
-                for (int t = 0; t < s && p.fragment[s] < 0; ++t)
-                    if (((key >> t) & 1) && ((key >> (4 + kPair[t][s])) & 1)) p.fragment[s] = p.fragment[t];
-                if (p.fragment[s] < 0) p.first_sample[fragments] = std::uint8_t(s), p.fragment[s] = fragments++;
-            }
-            p.new_fragments = std::uint32_t(fragments);
-            int i = 0;
-            while (i < distinct && !(pattern[i] == p)) ++i;
-            if (i == distinct) {
-                if (distinct == kMaxDistinct) throw "more distinct pixel patterns than kMaxDistinct";
-                pattern[distinct++] = p;
-            }
-            of_key[key] = std::uint8_t(i);
-        }
-    }
-};
-constexpr PixelPatterns kPixelPatterns;
-
-// Where list_fragments() reads and writes, as plain pointers: g++ would
-// reload the vectors' data pointers after every store (they might alias).
-struct FragmentListing {
-    const float* depth;
-    const std::uint32_t* triangle;
-    std::int32_t* fragment;
-    std::uint16_t *x, *y;
-    std::uint32_t* fragment_triangle;
-};
-
-// One pixel of list_fragments() (its samples from `first` on): its samples'
-// fragments, and the new ones appended from `count` on; returns the new
-// count. No branches (a pixel's 0-4 new fragments are hard to predict): its
-// 4 possible fragments are written every time, and count moves past the real ones.
-[[gnu::always_inline]] inline std::size_t list_pixel(const FragmentListing& l, std::size_t first, std::uint16_t x,
-                                                     std::uint16_t y, std::size_t count) {
-    const __m128 covered = _mm_cmplt_ps(_mm_loadu_ps(l.depth + first), _mm_set1_ps(1.0f));
-    // Ids of uncovered samples may be stale: the table ignores their pairs.
-    const std::uint32_t* ids = l.triangle + first;
-    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids));
-    // Pairs 01 02 03 12, then 13 23.
-    const __m128i left = _mm_shuffle_epi32(id, _MM_SHUFFLE(1, 0, 0, 0));
-    const __m128i right = _mm_shuffle_epi32(id, _MM_SHUFFLE(2, 3, 2, 1));
-    const __m128i left2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 2, 1));
-    const __m128i right2 = _mm_shuffle_epi32(id, _MM_SHUFFLE(0, 0, 3, 3));
-    const int same = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left, right))) |
-                     (_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(left2, right2))) & 3) << 4;
-    const PixelPattern& p = kPixelPatterns.pattern[kPixelPatterns.of_key[_mm_movemask_ps(covered) | same << 4]];
-    // Offsets + the pixel's first fragment index on covered lanes (-1 stays on the others).
-    const __m128i base = _mm_and_si128(_mm_castps_si128(covered), _mm_set1_epi32(std::int32_t(count)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(l.fragment + first),
-                     _mm_add_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p.fragment)), base));
-    const std::uint64_t four_x = x * 0x0001000100010001u, four_y = y * 0x0001000100010001u;
-    std::memcpy(l.x + count, &four_x, sizeof four_x), std::memcpy(l.y + count, &four_y, sizeof four_y);
-    for (int k = 0; k < kMsaaSamples; ++k) l.fragment_triangle[count + k] = ids[p.first_sample[k]];
-    return count + p.new_fragments;
+// The plain data list_fragments' kernels (msaa_list_kernel.hpp) work on.
+SampleListing sample_listing(const TileRect& rect, TileSamples& samples, TileFragments& out) {
+    // Depth is 1 outside the written box: there every sample is background.
+    return {samples.depth.data(), samples.triangle.data(), samples.fragment.data(), samples.side,
+            rect.width(), rect.height(),
+            std::max(samples.written_x0, 0), std::min(samples.written_x1, rect.width()),
+            std::max(samples.written_y0, 0), std::min(samples.written_y1, rect.height()),
+            out.x.data(), out.y.data(), out.triangle.data()};
 }
-
-// Whether any of the 4 pixels' samples from `first` on is covered.
-[[gnu::always_inline]] inline bool any_covered4(const float* depth) {
-    const __m128 one = _mm_set1_ps(1.0f);
-    const __m128 a = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 4), one));
-    const __m128 b = _mm_or_ps(_mm_cmplt_ps(_mm_loadu_ps(depth + 8), one), _mm_cmplt_ps(_mm_loadu_ps(depth + 12), one));
-    return _mm_movemask_ps(_mm_or_ps(a, b)) != 0;
-}
-
-}  // namespace
 
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out) {
-    static_assert(kMsaaSamples == 4, "a pixel's samples are one SSE vector");
-    const int width = rect.width(), height = rect.height();
-    // Depth is 1 outside the written box: there every sample is background.
-    const int box_x0 = std::max(samples.written_x0, 0), box_x1 = std::min(samples.written_x1, width);
-    const int box_y0 = std::max(samples.written_y0, 0), box_y1 = std::min(samples.written_y1, height);
-    const FragmentListing l{samples.depth.data(), samples.triangle.data(), samples.fragment.data(),
-                            out.x.data(), out.y.data(), out.triangle.data()};
-    std::size_t count = 0;
-    for (int y = 0; y < height; ++y) {
-        const std::size_t row = std::size_t(kMsaaSamples) * std::size_t(y) * samples.side;
-        std::int32_t* const fragment = l.fragment + row;
-        if (y < box_y0 || y >= box_y1 || box_x0 >= box_x1) {
-            std::fill_n(fragment, std::size_t(kMsaaSamples) * width, -1);
-            continue;
-        }
-        std::fill_n(fragment, std::size_t(kMsaaSamples) * box_x0, -1);
-        std::fill_n(fragment + std::size_t(kMsaaSamples) * box_x1, std::size_t(kMsaaSamples) * (width - box_x1), -1);
-        for (int x = box_x0; x < box_x1;) {
-            const std::size_t first = row + std::size_t(kMsaaSamples) * x;
-            if (x + 4 <= box_x1 && !any_covered4(l.depth + first)) {  // 4 background pixels
-                std::fill_n(l.fragment + first, 4 * kMsaaSamples, -1);
-                x += 4;
-                continue;
-            }
-            const int end = std::min(x + 4, box_x1);
-            for (; x < end; ++x) {
-                const std::size_t at = row + std::size_t(kMsaaSamples) * x;
-                count = list_pixel(l, at, std::uint16_t(x), std::uint16_t(y), count);
-            }
-        }
+    out.count = list_sample_fragments(sample_listing(rect, samples, out));
+}
+
+void list_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TileFragments& out) {
+    const SampleListing listing = sample_listing(rect, samples, out);
+    switch (isa) {
+        case simd::Isa::sse4: out.count = list_fragments_sse4(listing); return;
+        case simd::Isa::avx2: out.count = list_fragments_avx2(listing); return;
+        case simd::Isa::avx512: out.count = list_fragments_avx512(listing); return;
+        case simd::Isa::scalar: break;
     }
-    out.count = count;
+    out.count = list_sample_fragments(listing);
 }
 
 void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& out) {

@@ -87,6 +87,8 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 // written box it only stores -1; inside, it skips 4 background pixels at a
 // time.
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
+// The same with the ISA's copy (msaa_list_kernel.hpp; the one above for Isa::scalar).
+void list_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TileFragments& out);
 
 // λ1, λ2 of out's fragments at their pixel centres, whose triangles are
 // out.source: with the ISA's kernel (msaa_fragment_kernels.hpp), bit-identical
@@ -98,7 +100,7 @@ void fragment_barycentrics(simd::Isa isa, const TileRect& rect, TileFragments& o
 template <class TriangleOf>
 void collect_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of,
                        TileFragments& out) {
-    list_fragments(rect, samples, out);
+    list_fragments(isa, rect, samples, out);
     // Each shaded at its pixel's centre. Every fragment looks its triangle up:
     // a branch that reused the last one mispredicted at each change of
     // triangle, every few fragments.

@@ -8,6 +8,7 @@
 #include "simd/lane_helpers.hpp"
 
 #include "raster/msaa_fragment_kernels.hpp"
+#include "raster/msaa_list_kernel.hpp"
 #include "raster/raster_limits.hpp"
 
 namespace tessera::raster {
@@ -126,5 +127,7 @@ void TESSERA_SIMD_ENTRY(fragment_barycentrics)(const FragmentCentres& f) {
         f.lambda2[k] = float(edge_function(t.x[0], t.y[0], t.x[1], t.y[1], px, py)) * t.inv_area;
     }
 }
+
+std::size_t TESSERA_SIMD_ENTRY(list_fragments)(const SampleListing& samples) { return list_sample_fragments(samples); }
 
 }  // namespace tessera::raster
