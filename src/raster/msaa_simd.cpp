@@ -2,14 +2,17 @@
 // (msaa_kernels.hpp), compiled once per ISA. Same arithmetic as the scalar
 // loop in msaa.cpp, lane by lane, so both give bit-identical sample buffers.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
 #include "simd/lane_helpers.hpp"
 
+#include "raster/msaa_bin.hpp"
 #include "raster/msaa_kernels.hpp"
 #include "raster/msaa_pattern.hpp"
 #include "raster/raster_limits.hpp"
+#include "raster/tiny_triangle_simd.hpp"
 
 namespace tessera::raster {
 namespace {
@@ -153,8 +156,12 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const EdgeBlock32& b, const WideWe
                          b.triangle_id, tile, counters);
 }
 
-void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
-                                             const SampleView& tile, RasterCounters& counters) {
+namespace {
+
+// rasterize_msaa_tiny_<isa>, inlined into the bin loop below too.
+[[gnu::always_inline]] inline void rasterize_tiny(const RasterTriangle& t, std::uint32_t triangle_id,
+                                                  const TinyBox& box, const SampleView& tile,
+                                                  RasterCounters& counters) {
     // The lanes' sample positions in the box's first vector, fixed point.
     const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kLane.x);
     const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kLane.y);
@@ -176,6 +183,59 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint3
     rasterize_rows<false>(edges, WideLanes{}, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
                    box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0], t.depth[2] - t.depth[0],
                    triangle_id, tile, counters);
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                                             const SampleView& tile, RasterCounters& counters) {
+    rasterize_tiny(t, triangle_id, box, tile, counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_bin_msaa)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
+                                            std::uint32_t id_base, const TileRect& tile, TileSamples& samples,
+                                            const SampleView& view, RasterCounters& counters, WrittenBox& written,
+                                            DrawnCallback drawn, const CornerPrefetch& prefetch) {
+    // Copies the compiler may keep in registers: the vector stores into the
+    // tile's samples could otherwise change them, as far as it knows, so they
+    // would be read back from memory for every triangle and row.
+    const SampleView local_view = view;
+    const TileRect local_tile = tile;
+    RasterCounters local_counters = counters;
+    const CornerPrefetch local_prefetch = prefetch;
+    int written_x0 = written.x0, written_y0 = written.y0, written_x1 = written.x1, written_y1 = written.y1;
+    for (std::size_t i = 0; i < count; ++i) {
+        // A tile's triangles lie scattered through the chunk: fetch ahead
+        // (records are one aligned cache line each).
+        constexpr std::size_t kPrefetchDistance = 8;
+        if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
+        const RasterTriangle& t = records[bin[i]];
+        // As rasterize_triangle_msaa(isa, ...): the box in the tile, marked written, then tiny or not.
+        const int x_begin = t.px_min > local_tile.x0 ? t.px_min : local_tile.x0;
+        const int x_end = t.px_max < local_tile.x1 ? t.px_max + 1 : local_tile.x1;
+        const int y_begin = t.py_min > local_tile.y0 ? t.py_min : local_tile.y0;
+        const int y_end = t.py_max < local_tile.y1 ? t.py_max + 1 : local_tile.y1;
+        if (x_begin >= x_end || y_begin >= y_end) continue;
+        const int box_x0 = x_begin - local_tile.x0, box_y0 = y_begin - local_tile.y0;
+        const int box_x1 = x_end - local_tile.x0, box_y1 = y_end - local_tile.y0;
+        written_x0 = box_x0 < written_x0 ? box_x0 : written_x0, written_y0 = box_y0 < written_y0 ? box_y0 : written_y0;
+        written_x1 = box_x1 > written_x1 ? box_x1 : written_x1, written_y1 = box_y1 > written_y1 ? box_y1 : written_y1;
+        const std::uint32_t id = id_base | bin[i];
+        const std::uint64_t passed = local_counters.depth_passed;
+        if (tiny(t)) {
+            const TinyBox box{x_begin, x_end, y_begin, y_end, local_tile.x0, local_tile.y0};
+            rasterize_tiny(t, id, box, local_view, local_counters);
+        } else {
+            rasterize_general_msaa(simd::Isa::TESSERA_SIMD_SUFFIX, t, id, local_tile, x_begin, x_end, y_begin, y_end,
+                                   local_view, samples, local_counters);
+        }
+        if (local_counters.depth_passed != passed) {
+            if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+            if (drawn.call) drawn.call(drawn.context, bin[i]);
+        }
+    }
+    counters = local_counters;
+    written = {written_x0, written_y0, written_x1, written_y1};
 }
 
 }  // namespace tessera::raster
