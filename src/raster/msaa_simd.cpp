@@ -226,8 +226,11 @@ void TESSERA_SIMD_ENTRY(rasterize_bin_msaa)(const RasterTriangle* records, const
             const TinyBox box{x_begin, x_end, y_begin, y_end, local_tile.x0, local_tile.y0};
             rasterize_tiny(t, id, box, local_view, local_counters);
         } else {
+            // Counted apart, so that local_counters' address never escapes and it stays in registers.
+            RasterCounters general;
             rasterize_general_msaa(simd::Isa::TESSERA_SIMD_SUFFIX, t, id, local_tile, x_begin, x_end, y_begin, y_end,
-                                   local_view, samples, local_counters);
+                                   local_view, samples, general);
+            local_counters.fragments += general.fragments, local_counters.depth_passed += general.depth_passed;
         }
         if (local_counters.depth_passed != passed) {
             if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
