@@ -73,7 +73,7 @@ template <bool kWide>
                                                   float inv_area_value, float d0_value, float d10_value,
                                                   float d20_value, std::uint32_t triangle_id, const SampleView& tile,
                                                   RasterCounters& counters) {
-    const Int lane_pixel = Int::load_aligned(kLane.pixel);
+    const Int lane_pixel = Int::load_aligned(kLane.pixel), end(x_end);
     // E >= 0 as E > -1: one compare (AVX2 has no >= for integers).
     const Int bias1(edges.bias1), bias2(edges.bias2), minus_one(-1), id = Int(std::int32_t(triangle_id));
     const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
@@ -84,8 +84,10 @@ template <bool kWide>
         const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + x_begin);
         std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
         std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
+        Int column = lane_pixel + Int(x_begin);  // each lane's pixel column
         for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
-            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (lane_pixel < Int(x_end - x));
+            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (column < end);
+            column += Int(kPixels);
             const Int w1 = e1, w2 = e2;
             const double v1 = weight1, v2 = weight2;
             e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
@@ -169,12 +171,16 @@ namespace {
     // Edge k from corner a to corner b: E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
     // edge_function(), plus EdgeStepper's top-left bias; exact in int32, every value
     // being below 2^26.
+    static_assert(kTinySpan <= (1 << 12));
     constexpr int kCorners[3][2] = {{1, 2}, {2, 0}, {0, 1}};
     std::int32_t bias[3];
     for (int k = 0; k < 3; ++k) {
         const int a = kCorners[k][0], b = kCorners[k][1];
         const std::int32_t dx = t.x[b] - t.x[a], dy = t.y[b] - t.y[a];
-        bias[k] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+        // EdgeStepper's bias, 0 for a top or left edge (dy < 0, or dy == 0 and dx > 0), else -1, without
+        // branches: the sign of dy · 2^13 - dx, as |dx| < kTinySpan <= 2^12 (and dx != 0 where dy == 0:
+        // set-up triangles have area).
+        bias[k] = ~(((dy << 13) - dx) >> 31);
         edges.row[k] = Int(dx) * (y - Int(t.y[a])) - Int(dy) * (x - Int(t.x[a])) + Int(bias[k]);
         edges.right[k] = Int(-dy * (kPixels * 256));
         edges.down[k] = Int(dx * 256);
