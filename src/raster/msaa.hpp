@@ -99,14 +99,10 @@ template <class TriangleOf>
 void collect_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TriangleOf&& triangle_of,
                        TileFragments& out) {
     list_fragments(rect, samples, out);
-    // Each shaded at its pixel's centre. Neighbouring fragments mostly share
-    // a triangle: look it up once per run.
-    const RasterTriangle* t = nullptr;
-    std::uint32_t id = 0;
-    for (std::size_t k = 0; k < out.count; ++k) {
-        if (t == nullptr || out.triangle[k] != id) id = out.triangle[k], t = &triangle_of(id);
-        out.source[k] = t;
-    }
+    // Each shaded at its pixel's centre. Every fragment looks its triangle up:
+    // a branch that reused the last one mispredicted at each change of
+    // triangle, every few fragments.
+    for (std::size_t k = 0; k < out.count; ++k) out.source[k] = &triangle_of(out.triangle[k]);
     fragment_barycentrics(isa, rect, out);
 }
 

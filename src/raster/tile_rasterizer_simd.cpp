@@ -221,7 +221,11 @@ template <int kWidth>
                           (ox < Int(x_end - x_begin - v * S::kLanes));
             if constexpr (S::kRows > 1) inside = inside & (oy < Int(y_end - y));
             const unsigned inside_bits = lane_bits(inside);
-            if (inside_bits == 0) continue;
+            // No branch on whether the vector has a lane inside or passing:
+            // one with none, at a box's corners, mispredicted one time in
+            // five at 4K (callgrind: 522k of a culled frame's mispredicts,
+            // 243k without, for +7% instructions; at 720p, where the boxes are
+            // one vector that seldom misses, +3% instructions, no gain).
             // As the scalar loop: barycentrics, then depth linear in screen space, kept >= 0
             // (max(z, 0) gives 0 for -0 too, as the scalar z > 0 ? z : 0 does).
             const Float lambda1 = xsimd::to_float(e[1]) * inv_area;
@@ -232,9 +236,7 @@ template <int kWidth>
             // Depths in [0, 1] order like their bit patterns: LESS as an integer compare.
             const auto pass = inside & (new_depth < old_depth);
             fragments += unsigned(std::popcount(inside_bits));
-            const unsigned pass_bits = lane_bits(pass);
-            if (pass_bits == 0) continue;
-            passed += unsigned(std::popcount(pass_bits));
+            passed += unsigned(std::popcount(lane_bits(pass)));
             store_rows<S::kColumns>(depth, offset, xsimd::select(pass, new_depth, old_depth));
             update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.triangle), offset, pass, id);
             update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.lambda1), offset, pass,
