@@ -164,6 +164,8 @@ EdgeRange sample_range(const EdgeStepper& e, int width, int height) {
             e.row + std::max<std::int64_t>(across, 0) + std::max<std::int64_t>(down, 0) + offset_max};
 }
 
+}  // namespace
+
 // Other triangles: edges set up in int64, narrowed to int32 where they fit;
 // where not, barycentric numerators in double and coverage in int32 for the
 // edges that cross the box; the scalar loop when even those leave int32.
@@ -218,8 +220,6 @@ EdgeRange sample_range(const EdgeStepper& e, int width, int height) {
         case simd::Isa::scalar: break;
     }
 }
-
-}  // namespace
 
 void rasterize_triangle_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
                              TileSamples& samples, RasterCounters& counters) {

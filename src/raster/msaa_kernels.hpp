@@ -40,4 +40,15 @@ TESSERA_DECLARE_MSAA_KERNEL(avx2)
 TESSERA_DECLARE_MSAA_KERNEL(avx512)
 #undef TESSERA_DECLARE_MSAA_KERNEL
 
+struct TileSamples;
+
+// Every triangle but tiny ones (msaa.cpp), over its box [x_begin, x_end) ×
+// [y_begin, y_end) in image pixels, already clipped to the tile and marked
+// written: the ISA's block kernel, or the scalar loop where edge values leave
+// int32. `view` is `samples`' arrays. rasterize_triangle_msaa(isa, ...) and
+// the bin kernels (msaa_bin.hpp) hand such triangles over to it.
+void rasterize_general_msaa(simd::Isa isa, const RasterTriangle& t, std::uint32_t triangle_id, const TileRect& tile,
+                            int x_begin, int x_end, int y_begin, int y_end, const SampleView& view,
+                            TileSamples& samples, RasterCounters& counters);
+
 }  // namespace tessera::raster

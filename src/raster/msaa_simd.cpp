@@ -2,14 +2,17 @@
 // (msaa_kernels.hpp), compiled once per ISA. Same arithmetic as the scalar
 // loop in msaa.cpp, lane by lane, so both give bit-identical sample buffers.
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "simd/kernel_prelude.hpp"
 #include "simd/lane_helpers.hpp"
 
+#include "raster/msaa_bin.hpp"
 #include "raster/msaa_kernels.hpp"
 #include "raster/msaa_pattern.hpp"
 #include "raster/raster_limits.hpp"
+#include "raster/tiny_triangle_simd.hpp"
 
 namespace tessera::raster {
 namespace {
@@ -70,7 +73,7 @@ template <bool kWide>
                                                   float inv_area_value, float d0_value, float d10_value,
                                                   float d20_value, std::uint32_t triangle_id, const SampleView& tile,
                                                   RasterCounters& counters) {
-    const Int lane_pixel = Int::load_aligned(kLane.pixel);
+    const Int lane_pixel = Int::load_aligned(kLane.pixel), end(x_end);
     // E >= 0 as E > -1: one compare (AVX2 has no >= for integers).
     const Int bias1(edges.bias1), bias2(edges.bias2), minus_one(-1), id = Int(std::int32_t(triangle_id));
     const Float inv_area(inv_area_value), d0(d0_value), d10(d10_value), d20(d20_value), zero(0.0f);
@@ -81,8 +84,10 @@ template <bool kWide>
         const std::size_t first = std::size_t(kMsaaSamples) * (std::size_t(y) * tile.side + x_begin);
         std::int32_t* depth = reinterpret_cast<std::int32_t*>(tile.depth) + first;
         std::int32_t* triangle = reinterpret_cast<std::int32_t*>(tile.triangle) + first;
+        Int column = lane_pixel + Int(x_begin);  // each lane's pixel column
         for (int x = x_begin; x < x_end; x += kPixels, depth += Int::size, triangle += Int::size) {
-            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (lane_pixel < Int(x_end - x));
+            const IntMask inside = ((e0 | e1 | e2) > minus_one) & (column < end);
+            column += Int(kPixels);
             const Int w1 = e1, w2 = e2;
             const double v1 = weight1, v2 = weight2;
             e0 += edges.right[0], e1 += edges.right[1], e2 += edges.right[2];
@@ -151,8 +156,12 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_block)(const EdgeBlock32& b, const WideWe
                          b.triangle_id, tile, counters);
 }
 
-void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
-                                             const SampleView& tile, RasterCounters& counters) {
+namespace {
+
+// rasterize_msaa_tiny_<isa>, inlined into the bin loop below too.
+[[gnu::always_inline]] inline void rasterize_tiny(const RasterTriangle& t, std::uint32_t triangle_id,
+                                                  const TinyBox& box, const SampleView& tile,
+                                                  RasterCounters& counters) {
     // The lanes' sample positions in the box's first vector, fixed point.
     const Int x = Int(box.x_begin * 256 + 128) + Int::load_aligned(kLane.x);
     const Int y = Int(box.y_begin * 256 + 128) + Int::load_aligned(kLane.y);
@@ -160,12 +169,16 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint3
     // Edge k from corner a to corner b: E = (bx - ax)(y - ay) - (by - ay)(x - ax), as
     // edge_function(), plus EdgeStepper's top-left bias; exact in int32, every value
     // being below 2^26.
+    static_assert(kTinySpan <= (1 << 12));
     constexpr int kCorners[3][2] = {{1, 2}, {2, 0}, {0, 1}};
     std::int32_t bias[3];
     for (int k = 0; k < 3; ++k) {
         const int a = kCorners[k][0], b = kCorners[k][1];
         const std::int32_t dx = t.x[b] - t.x[a], dy = t.y[b] - t.y[a];
-        bias[k] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+        // EdgeStepper's bias, 0 for a top or left edge (dy < 0, or dy == 0 and dx > 0), else -1, without
+        // branches: the sign of dy · 2^13 - dx, as |dx| < kTinySpan <= 2^12 (and dx != 0 where dy == 0:
+        // set-up triangles have area).
+        bias[k] = ~(((dy << 13) - dx) >> 31);
         edges.row[k] = Int(dx) * (y - Int(t.y[a])) - Int(dy) * (x - Int(t.x[a])) + Int(bias[k]);
         edges.right[k] = Int(-dy * (kPixels * 256));
         edges.down[k] = Int(dx * 256);
@@ -174,6 +187,62 @@ void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint3
     rasterize_rows<false>(edges, WideLanes{}, box.x_begin - box.tile_x0, box.x_end - box.tile_x0, box.y_begin - box.tile_y0,
                    box.y_end - box.tile_y0, t.inv_area, t.depth[0], t.depth[1] - t.depth[0], t.depth[2] - t.depth[0],
                    triangle_id, tile, counters);
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(rasterize_msaa_tiny)(const RasterTriangle& t, std::uint32_t triangle_id, const TinyBox& box,
+                                             const SampleView& tile, RasterCounters& counters) {
+    rasterize_tiny(t, triangle_id, box, tile, counters);
+}
+
+void TESSERA_SIMD_ENTRY(rasterize_bin_msaa)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
+                                            std::uint32_t id_base, const TileRect& tile, TileSamples& samples,
+                                            const SampleView& view, RasterCounters& counters, WrittenBox& written,
+                                            DrawnCallback drawn, const CornerPrefetch& prefetch) {
+    // Copies the compiler may keep in registers: the vector stores into the
+    // tile's samples could otherwise change them, as far as it knows, so they
+    // would be read back from memory for every triangle and row.
+    const SampleView local_view = view;
+    const TileRect local_tile = tile;
+    RasterCounters local_counters = counters;
+    const CornerPrefetch local_prefetch = prefetch;
+    int written_x0 = written.x0, written_y0 = written.y0, written_x1 = written.x1, written_y1 = written.y1;
+    for (std::size_t i = 0; i < count; ++i) {
+        // A tile's triangles lie scattered through the chunk: fetch ahead
+        // (records are one aligned cache line each).
+        constexpr std::size_t kPrefetchDistance = 8;
+        if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
+        const RasterTriangle& t = records[bin[i]];
+        // As rasterize_triangle_msaa(isa, ...): the box in the tile, marked written, then tiny or not.
+        const int x_begin = t.px_min > local_tile.x0 ? t.px_min : local_tile.x0;
+        const int x_end = t.px_max < local_tile.x1 ? t.px_max + 1 : local_tile.x1;
+        const int y_begin = t.py_min > local_tile.y0 ? t.py_min : local_tile.y0;
+        const int y_end = t.py_max < local_tile.y1 ? t.py_max + 1 : local_tile.y1;
+        if (x_begin >= x_end || y_begin >= y_end) continue;
+        const int box_x0 = x_begin - local_tile.x0, box_y0 = y_begin - local_tile.y0;
+        const int box_x1 = x_end - local_tile.x0, box_y1 = y_end - local_tile.y0;
+        written_x0 = box_x0 < written_x0 ? box_x0 : written_x0, written_y0 = box_y0 < written_y0 ? box_y0 : written_y0;
+        written_x1 = box_x1 > written_x1 ? box_x1 : written_x1, written_y1 = box_y1 > written_y1 ? box_y1 : written_y1;
+        const std::uint32_t id = id_base | bin[i];
+        const std::uint64_t passed = local_counters.depth_passed;
+        if (tiny(t)) {
+            const TinyBox box{x_begin, x_end, y_begin, y_end, local_tile.x0, local_tile.y0};
+            rasterize_tiny(t, id, box, local_view, local_counters);
+        } else {
+            // Counted apart, so that local_counters' address never escapes and it stays in registers.
+            RasterCounters general;
+            rasterize_general_msaa(simd::Isa::TESSERA_SIMD_SUFFIX, t, id, local_tile, x_begin, x_end, y_begin, y_end,
+                                   local_view, samples, general);
+            local_counters.fragments += general.fragments, local_counters.depth_passed += general.depth_passed;
+        }
+        if (local_counters.depth_passed != passed) {
+            if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
+            if (drawn.call) drawn.call(drawn.context, bin[i]);
+        }
+    }
+    counters = local_counters;
+    written = {written_x0, written_y0, written_x1, written_y1};
 }
 
 }  // namespace tessera::raster

@@ -27,6 +27,7 @@
 #include "raster/bin_rasterizer.hpp"
 #include "raster/blend_raster.hpp"
 #include "raster/msaa.hpp"
+#include "raster/msaa_bin.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
@@ -596,6 +597,12 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                                           const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
                                           const raster::FragmentTest test{shade::alpha_mask_keep, &mask};
                                           raster::rasterize_triangle_msaa(t, id, rect, s.samples, s.counters, &test);
+                                      },
+                                      [&](const render::Chunk& chunk, std::span<const std::uint32_t> bin,
+                                          std::uint32_t id_base) {
+                                          raster::rasterize_bin_msaa(isa, chunk.assembled.triangles.data(), bin, id_base,
+                                                                     rect, s.samples, s.counters, {},
+                                                                     corner_prefetch(chunk));
                                       });
     const bool blended = has_blended(tile, scene.msaa, s);
     shade_and_resolve(
