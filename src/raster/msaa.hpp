@@ -83,11 +83,11 @@ bool covers_point(const RasterTriangle& t, std::int64_t px, std::int64_t py);
 
 // The first half of collect_fragments(): sets samples.fragment and lists the
 // fragments' pixels and triangles (x, y, triangle, count), a pixel at a time
-// with SSE2 and a table, without the branches of the loop below. Outside the
-// written box it only stores -1; inside, it skips 4 background pixels at a
-// time.
+// from a table, without the branches of the loop below (msaa_list_kernel.hpp;
+// this copy is baseline SSE2). Outside the written box it only stores -1;
+// inside, it skips 4 background pixels at a time.
 void list_fragments(const TileRect& rect, TileSamples& samples, TileFragments& out);
-// The same with the ISA's copy (msaa_list_kernel.hpp; the one above for Isa::scalar).
+// The same with the ISA's copy (the one above for Isa::scalar).
 void list_fragments(simd::Isa isa, const TileRect& rect, TileSamples& samples, TileFragments& out);
 
 // λ1, λ2 of out's fragments at their pixel centres, whose triangles are
