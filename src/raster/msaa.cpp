@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 
 #include "raster/msaa_fragment_kernels.hpp"
 #include "raster/msaa_kernels.hpp"
