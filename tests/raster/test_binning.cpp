@@ -151,3 +151,55 @@ TEST_CASE("the tile index lists, per tile, every chunk's non-empty bin in chunk 
         CHECK(wrong == 0);
     }
 }
+
+// Every box shape the 2×2 path and the slow path see — 1×1, 2×1, 1×2 and 2×2
+// tiles, wider and taller ones, boxes in the last (cut-short) tile row and
+// column — against the plain definition, both where boxes crossing tile
+// borders come first (the branch-free pass) and behind a long run of one-tile
+// boxes (the branchy pass).
+TEST_CASE("binning equals the plain definition for every box shape, at the grid's edges too") {
+    const raster::TileGrid grid(100, 70, 32);  // 4 × 3 tiles, the last column 4 px wide, the last row 6 px
+    std::vector<raster::RasterTriangle> shapes;
+    auto box = [&](int x0, int y0, int x1, int y1) {
+        if (x0 > 99 || y0 > 69) return;  // past the image: no box
+        raster::RasterTriangle t{};
+        t.px_min = std::int16_t(x0), t.px_max = std::int16_t(std::min(x1, 99));
+        t.py_min = std::int16_t(y0), t.py_max = std::int16_t(std::min(y1, 69));
+        shapes.push_back(t);
+    };
+    for (int tx = 0; tx < grid.tiles_x; ++tx)
+        for (int ty = 0; ty < grid.tiles_y; ++ty) {
+            const int x = tx * 32, y = ty * 32;
+            box(x + 1, y + 1, x + 3, y + 2);     // 1×1
+            box(x + 30, y + 4, x + 33, y + 6);   // 2×1 (1×1 where it meets the right edge)
+            box(x + 4, y + 30, x + 6, y + 33);   // 1×2
+            box(x + 31, y + 31, x + 32, y + 32); // 2×2
+            box(x, y, x + 31, y + 31);           // one whole tile
+            box(x + 20, y + 2, x + 70, y + 3);   // 3×1
+            box(x + 2, y + 20, x + 3, y + 70);   // 1×3
+            box(x + 10, y + 10, x + 80, y + 80); // 3×3
+        }
+    box(96, 64, 99, 69);  // the last tile, 4 × 6 px
+    box(0, 0, 99, 69);    // the whole image
+    std::vector<raster::RasterTriangle> one_tile_first(70, shapes[0]);
+    one_tile_first.insert(one_tile_first.end(), shapes.begin(), shapes.end());
+    raster::ChunkBins bins;
+    for (const std::vector<raster::RasterTriangle>& triangles : {shapes, one_tile_first, shapes}) {
+        bins.build(grid, triangles);
+        std::size_t listed = 0;
+        int different = 0;
+        for (int tile = 0; tile < grid.tile_count(); ++tile) {
+            std::vector<std::uint32_t> expected;
+            const raster::TileRect r = grid.rect(tile);
+            for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+                const raster::RasterTriangle& t = triangles[i];
+                if (t.px_min < r.x1 && t.px_max >= r.x0 && t.py_min < r.y1 && t.py_max >= r.y0) expected.push_back(i);
+            }
+            different += std::vector<std::uint32_t>(bins.tile(tile).begin(), bins.tile(tile).end()) != expected;
+            listed += expected.size();
+        }
+        CHECK(different == 0);
+        CHECK(bins.items.size() == listed);
+        CHECK(std::all_of(bins.tile_scratch.begin(), bins.tile_scratch.end(), [](std::uint32_t v) { return v == 0; }));
+    }
+}
