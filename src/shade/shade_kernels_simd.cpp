@@ -26,6 +26,12 @@
 //    scene's few lights without ranges), take copies with the pairs unrolled
 //    and the lights broadcast once per call; where every light is grey, the
 //    uncut kernels sum one colour channel (shade_fragment_runs; same bits).
+// Built without contraction (src/shade/CMakeLists.txt): every multiply-add that
+// fuses is an explicit fma, so that a copy of the kernel inlined into another
+// loop (plain runs, unrolled lights) fuses the same ones. Left to g++, the
+// AVX-512 copy fused differently in the run loops than in shade_fragments
+// (seen on real AVX-512 hardware: last-bit differences between the two paths).
+// The explicit fmas are where g++ fused the AVX2 copy, so its bits are unchanged.
 // The result stays within the tested bound of the reference
 // (tests/shade/test_shade_kernels.cpp). The range test rounds exactly as the
 // reference's, so every ISA cuts the same lanes, and a light adds the same bits
@@ -327,8 +333,8 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     s.n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
     s.v = normalize(cam_pos - s.world_pos);
     const Batch f0_base(0.04f);  // mix(vec3(0.04), albedo, metallic)
-    const Vec3 f0 = {f0_base + (albedo.x - f0_base) * metallic, f0_base + (albedo.y - f0_base) * metallic,
-                     f0_base + (albedo.z - f0_base) * metallic};
+    const Vec3 f0 = {xsimd::fma(albedo.x - f0_base, metallic, f0_base), xsimd::fma(albedo.y - f0_base, metallic, f0_base),
+                     xsimd::fma(albedo.z - f0_base, metallic, f0_base)};
     const Batch a = roughness * roughness;
     const Batch a2 = a * a;
     s.a2_minus_1 = a2 - Batch(1.0f);
@@ -337,7 +343,7 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     s.one_minus_k = Batch(1.0f) - s.k;
     s.n_dot_v_raw = dot(s.n, s.v);
     const Batch n_dot_v = max0(s.n_dot_v_raw);
-    const Batch g_v = n_dot_v / (n_dot_v * s.one_minus_k + s.k);  // geometry_schlick_ggx(N·V)
+    const Batch g_v = n_dot_v / xsimd::fma(n_dot_v, s.one_minus_k, s.k);  // geometry_schlick_ggx(N·V)
     const Batch spec_numerator = a2 * g_v * Batch(1.0f / kPi);  // a²·G(N·V)/π: spec = spec_numerator·spec'
 
     s.four_n_dot_v = Batch(4.0f) * n_dot_v;
@@ -355,12 +361,8 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     const Batch ambient = Batch(0.03f) * ao;
     const auto radiance = [&](const Batch& albedo_c, const Batch& f0_c, const Batch& diffuse_sum,
                               const Batch& specular_sum, const Batch& specular_w_sum) {
-        const Batch lo = (Batch(1.0f) - f0_c) * (albedo_c * diffuse_scale * diffuse_sum + spec_numerator * specular_w_sum) +
-                         (f0_c * spec_numerator) * specular_sum;
-        // Fused where the ISA has FMA, as the compiler fused it when written
-        // albedo_c * ambient + lo: said explicitly, so that it stays fused where
-        // a run's material makes albedo_c * ambient loop-invariant (GCC fuses a
-        // multiply only with an add in the same basic block).
+        const Batch diffuse_and_w = xsimd::fma(spec_numerator, specular_w_sum, (albedo_c * diffuse_scale) * diffuse_sum);
+        const Batch lo = xsimd::fma(f0_c * spec_numerator, specular_sum, (Batch(1.0f) - f0_c) * diffuse_and_w);
         return xsimd::fma(albedo_c, ambient, lo);
     };
     if constexpr (grey_lights<Lights>) {  // green and blue summed as red

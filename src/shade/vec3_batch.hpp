@@ -26,7 +26,10 @@ inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b
 inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
 inline Vec3 operator*(const Vec3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
-inline Batch dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+// (x·x' + y·y') + z·z' with the products after the first fused where the ISA has
+// FMA: written out, because a file built without contraction (shade_kernels_simd.cpp)
+// must still fuse them, and one built with it must not leave it to the context.
+inline Batch dot(const Vec3& a, const Vec3& b) { return xsimd::fma(a.z, b.z, xsimd::fma(a.y, b.y, a.x * b.x)); }
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
