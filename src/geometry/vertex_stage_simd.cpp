@@ -55,6 +55,50 @@ Int outcodes(const Vec4& p, const Float& nx, const Float& ny, const Float& nz, c
         xsimd::select(finite, code, xsimd::bitwise_cast<Float>(Int(std::int32_t(kNotFinite)))));
 }
 
+#if defined(__AVX2__)
+// Lanes first .. first + 8 of a run's records (stride floats apart; 16 bytes are
+// read from each, so the last must not be the run's last): their first three
+// words as three vectors.
+void load_records8(const float* base, std::size_t stride, std::size_t first, __m256 (&abc)[3]) {
+    __m256 r[4];
+    for (std::size_t j = 0; j < 4; ++j)
+        r[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + stride * (first + j))),
+                                    _mm_loadu_ps(base + stride * (first + j + 4)), 1);
+    simd::transpose4x4_halves(r);
+    abc[0] = r[0], abc[1] = r[1], abc[2] = r[2];
+}
+
+// Vertices first .. first + 8 out, from one vector per word: the 12 words of
+// each ShadedVertex (clip xyzw, world xyz, normal xyz, uv) and its screen
+// words (x, y, depth bits, outcode).
+void store_records8(const VertexRunOutput& out, std::size_t first, __m256 (&words)[8], __m256 (&tail)[4],
+                    __m256 (&screen)[4]) {
+    simd::transpose8x8(words);
+    simd::transpose4x4_halves(tail);
+    simd::transpose4x4_halves(screen);
+    for (std::size_t j = 0; j < 8; ++j) {
+        float* vertex = out.vertices + 12 * (first + j);
+        _mm256_storeu_ps(vertex, words[j]);
+        const __m128 rest = j < 4 ? _mm256_castps256_ps128(tail[j]) : _mm256_extractf128_ps(tail[j - 4], 1);
+        _mm_storeu_ps(vertex + 8, rest);
+        const __m128 on_screen = j < 4 ? _mm256_castps256_ps128(screen[j]) : _mm256_extractf128_ps(screen[j - 4], 1);
+        _mm_storeu_ps(reinterpret_cast<float*>(out.screen + 4 * (first + j)), on_screen);
+    }
+}
+
+// Lanes 8h .. 8h + 8 of a vector, and two such halves as one vector.
+#if defined(__AVX512F__)
+__m256 half_of(const Float& x, std::size_t h) {
+    return h == 0 ? _mm512_castps512_ps256(x) : _mm512_extractf32x8_ps(x, 1);
+}
+Float join(const __m256& low, const __m256& high) {
+    return _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
+}
+#else
+__m256 half_of(const Float& x, std::size_t) { return x; }
+#endif
+#endif
+
 void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
     // Per-lane staging: object-space inputs in, results out.
     alignas(64) float position[3][kLanes], normal[3][kLanes], uv[2][kLanes];
@@ -65,17 +109,20 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
     for (std::size_t first = 0; first < in.count; first += kLanes) {
         const std::size_t n = std::min(kLanes, in.count - first);
         Float px, py, pz, nx0, ny0, nz0, u, v;
-#if defined(__AVX2__) && !defined(__AVX512F__)
-        // Lanes whose 16-byte loads (xyz + 1 float, uv + 2) stay inside the run: records in, transposed.
+#if defined(__AVX2__)
+        // Lanes whose 16-byte loads (xyz + 1 float, uv + 2) stay inside the run: records in, transposed
+        // 8 lanes at a time (AVX-512: two such halves joined).
         const bool transposed = first + kLanes < in.count;
         if (transposed) {
             const auto load = [&](const float* base, std::size_t stride, Float& a, Float& b, Float& c) {
-                __m256 r[4];
-                for (std::size_t j = 0; j < 4; ++j)
-                    r[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + stride * (first + j))),
-                                                _mm_loadu_ps(base + stride * (first + j + 4)), 1);
-                simd::transpose4x4_halves(r);
-                a = r[0], b = r[1], c = r[2];
+                __m256 h[kLanes / 8][3];
+                for (std::size_t half = 0; half < kLanes / 8; ++half)
+                    load_records8(base, stride, first + 8 * half, h[half]);
+#if defined(__AVX512F__)
+                a = join(h[0][0], h[1][0]), b = join(h[0][1], h[1][1]), c = join(h[0][2], h[1][2]);
+#else
+                a = h[0][0], b = h[0][1], c = h[0][2];
+#endif
             };
             load(in.positions, 3, px, py, pz);
             load(in.normals, 3, nx0, ny0, nz0);
@@ -116,23 +163,16 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
         const Float sx = (p.x * w_inv * half + half) * width, sy = (half - p.y * w_inv * half) * height;
         const Int screen_x = xsimd::nearbyint_as_int(sx * subpixel), screen_y = xsimd::nearbyint_as_int(sy * subpixel);
         const Float depth = p.z * w_inv * half + half;
-#if defined(__AVX2__) && !defined(__AVX512F__)
-        if (n == kLanes) {  // whole records out, transposed
-            __m256 words[8] = {p.x, p.y, p.z, p.w, wx, wy, wz, nx};
-            simd::transpose8x8(words);
-            __m256 tail[4] = {ny, nz, u, v};
-            simd::transpose4x4_halves(tail);
-            __m256 screen[4] = {_mm256_castsi256_ps(screen_x), _mm256_castsi256_ps(screen_y), depth,
-                                _mm256_castsi256_ps(codes)};
-            simd::transpose4x4_halves(screen);
-            for (std::size_t j = 0; j < kLanes; ++j) {
-                float* vertex = out.vertices + 12 * (first + j);
-                _mm256_storeu_ps(vertex, words[j]);
-                const __m128 rest = j < 4 ? _mm256_castps256_ps128(tail[j]) : _mm256_extractf128_ps(tail[j - 4], 1);
-                _mm_storeu_ps(vertex + 8, rest);
-                const __m128 on_screen =
-                    j < 4 ? _mm256_castps256_ps128(screen[j]) : _mm256_extractf128_ps(screen[j - 4], 1);
-                _mm_storeu_ps(reinterpret_cast<float*>(out.screen + 4 * (first + j)), on_screen);
+#if defined(__AVX2__)
+        if (n == kLanes) {  // whole records out, transposed 8 lanes at a time
+            for (std::size_t h = 0; h < kLanes / 8; ++h) {
+                __m256 words[8] = {half_of(p.x, h), half_of(p.y, h), half_of(p.z, h), half_of(p.w, h),
+                                   half_of(wx, h),  half_of(wy, h),  half_of(wz, h),  half_of(nx, h)};
+                __m256 tail[4] = {half_of(ny, h), half_of(nz, h), half_of(u, h), half_of(v, h)};
+                __m256 screen[4] = {half_of(xsimd::bitwise_cast<Float>(screen_x), h),
+                                    half_of(xsimd::bitwise_cast<Float>(screen_y), h), half_of(depth, h),
+                                    half_of(xsimd::bitwise_cast<Float>(codes), h)};
+                store_records8(out, first + 8 * h, words, tail, screen);
             }
             codes.store_unaligned(reinterpret_cast<std::int32_t*>(out.outcodes + first));
             continue;

@@ -9,11 +9,9 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include "simd/kernel_prelude.hpp"
 
-#include "simd/hardware_gather.hpp"
 #include "simd/transpose.hpp"
 
 #include "geometry/clipper.hpp"
@@ -81,21 +79,30 @@ struct Corner {
 };
 
 // Loads the 16-byte ScreenVertex of every lane and transposes them: on this
-// project's AMD machines a hardware gather costs ~17 cycles, so 4 of them per
-// corner would cost more than all the rest of setup. xsimd 8.1 has no
-// transpose, hence the intrinsics.
+// project's AMD machines a hardware gather costs ~17 cycles (AVX2, Zen 2/3),
+// so 4 of them per corner would cost more than all the rest of setup; on Zen 5
+// four 16-lane gathers made the whole triangles pass 1.6x slower than these
+// loads. xsimd 8.1 has no transpose, hence the intrinsics.
 Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
-#if defined(__AVX512F__)
-    // Not measured on AMD; Intel's gathers are quicker.
-    const Int at = Int::load_aligned(ref) * Int(4);
-    return {simd::hardware_gather(screen, at), simd::hardware_gather(screen, at + Int(1)),
-            simd::hardware_gather(screen, at + Int(2)), simd::hardware_gather(screen, at + Int(3))};
-#elif defined(__AVX2__)
-    // Lanes j and j + 4 share a register, one per 128-bit half.
     // Refs are >= 0: as unsigned, a ref's address is one shift and add away.
-    const auto vertex = [screen, ref](int j) {
+    [[maybe_unused]] const auto vertex = [screen, ref](int j) {
         return reinterpret_cast<const float*>(screen) + 4 * std::size_t(std::uint32_t(ref[j]));
     };
+#if defined(__AVX512F__)
+    // Lanes j, j + 4, j + 8 and j + 12 share a register, one per 128-bit quarter.
+    __m512 v[4];
+    for (int j = 0; j < 4; ++j) {
+        const __m256 low = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(vertex(j))),
+                                                _mm_loadu_ps(vertex(j + 4)), 1);
+        const __m256 high = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(vertex(j + 8))),
+                                                 _mm_loadu_ps(vertex(j + 12)), 1);
+        v[j] = _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
+    }
+    simd::transpose4x4_quarters(v);
+    return {Int(_mm512_castps_si512(v[0])), Int(_mm512_castps_si512(v[1])), Int(_mm512_castps_si512(v[2])),
+            Int(_mm512_castps_si512(v[3]))};
+#elif defined(__AVX2__)
+    // Lanes j and j + 4 share a register, one per 128-bit half.
     __m256 v[4];
     for (int j = 0; j < 4; ++j) {
         const __m128 lo = _mm_loadu_ps(vertex(j));
@@ -130,7 +137,20 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
 [[gnu::always_inline]] inline void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
     std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
     for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
-#if defined(__AVX2__) && !defined(__AVX512F__)
+#if defined(__AVX512F__)
+    // Per 8 lanes (each 256-bit half), two 8 × 8 transposes as AVX2 does.
+    for (int half = 0; half < 2; ++half)
+        for (int part = 0; part < 2; ++part) {
+            __m256 r[8];
+            for (int w = 0; w < 8; ++w) {
+                const __m512 word = _mm512_castsi512_ps(words[8 * part + w]);
+                r[w] = half == 0 ? _mm512_castps512_ps256(word) : _mm512_extractf32x8_ps(word, 1);
+            }
+            simd::transpose8x8(r);
+            for (int j = 0; j < 8; ++j)
+                _mm256_store_ps(reinterpret_cast<float*>(&records[at[8 * half + j]]) + 8 * part, r[j]);
+        }
+#elif defined(__AVX2__)
     // Two 8 × 8 transposes: words 0-7 and 8-15, each lane's half of a record.
     for (int part = 0; part < 2; ++part) {
         __m256 r[8];
@@ -138,22 +158,13 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
         simd::transpose8x8(r);
         for (int j = 0; j < 8; ++j) _mm256_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 8 * part, r[j]);
     }
-#elif !defined(__AVX__)
+#else  // SSE
     // Four 4 × 4 transposes, a quarter of each record each.
     for (int part = 0; part < 4; ++part) {
         __m128 r[4];
         for (int w = 0; w < 4; ++w) r[w] = _mm_castsi128_ps(words[4 * part + w]);
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
         for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 4 * part, r[j]);
-    }
-#else
-    alignas(64) std::int32_t lanes[16][kLanes];
-    for (int w = 0; w < 16; ++w) words[w].store_aligned(lanes[w]);
-    for (std::uint64_t bits = kept; bits != 0; bits &= bits - 1) {
-        const int j = std::countr_zero(bits);
-        std::int32_t record[16];
-        for (int w = 0; w < 16; ++w) record[w] = lanes[w][j];
-        std::memcpy(&records[at[j]], record, sizeof(record));
     }
 #endif
 }

@@ -1,6 +1,6 @@
 // Transposes of 32-bit lanes for AVX2 kernels that move records (structs of
 // 32-bit words) in and out of one-vector-per-word form: xsimd 8.1 has no
-// transpose, hence the intrinsics. For kernel sources compiled with AVX2 only.
+// transpose, hence the intrinsics. For kernel sources compiled with AVX2 or AVX-512.
 #pragma once
 
 #if defined(__AVX2__)
@@ -31,6 +31,16 @@ inline void transpose8x8(__m256 (&r)[8]) {
         r[i + 4] = _mm256_permute2f128_ps(u[i], u[i + 4], 0x31);
     }
 }
+
+#if defined(__AVX512F__)
+// transpose4x4_halves for 512 bits: 4×4 within each 128-bit quarter.
+inline void transpose4x4_quarters(__m512 (&r)[4]) {
+    const __m512 t0 = _mm512_unpacklo_ps(r[0], r[1]), t1 = _mm512_unpacklo_ps(r[2], r[3]);
+    const __m512 t2 = _mm512_unpackhi_ps(r[0], r[1]), t3 = _mm512_unpackhi_ps(r[2], r[3]);
+    r[0] = _mm512_shuffle_ps(t0, t1, 0x44), r[1] = _mm512_shuffle_ps(t0, t1, 0xEE);
+    r[2] = _mm512_shuffle_ps(t2, t3, 0x44), r[3] = _mm512_shuffle_ps(t2, t3, 0xEE);
+}
+#endif
 
 }  // namespace tessera::simd
 #endif
