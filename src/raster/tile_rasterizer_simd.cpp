@@ -165,11 +165,30 @@ template <int kColumns>
 #endif
     }
 }
-// The load + select + store of one tile array where `pass` holds.
+// v into one tile array where `pass` holds: AVX-512 by masked stores, a row
+// at a time (rows past the box have no lane set, so they write nothing);
+// elsewhere a load + select + store (AVX2's vpmaskmovd stores are microcoded
+// on AMD: the stamps took 1.8x as long with them).
 template <int kColumns>
 [[gnu::always_inline]] inline void update_rows(std::int32_t* base, const std::size_t* offset,
                                                const xsimd::batch_bool<std::int32_t, Arch>& pass, const Int& v) {
+#if XSIMD_WITH_AVX512F
+    const __mmask16 mask = pass;
+    if constexpr (kColumns == 16) {
+        _mm512_mask_storeu_epi32(base + offset[0], mask, v);
+    } else if constexpr (kColumns == 8) {
+        _mm256_mask_storeu_epi32(base + offset[0], __mmask8(mask), _mm512_castsi512_si256(v));
+        _mm256_mask_storeu_epi32(base + offset[1], __mmask8(mask >> 8), _mm512_extracti64x4_epi64(v, 1));
+    } else {
+        static_assert(kColumns == 4);
+        _mm_mask_storeu_epi32(base + offset[0], __mmask8(mask & 0xF), _mm512_castsi512_si128(v));
+        _mm_mask_storeu_epi32(base + offset[1], __mmask8((mask >> 4) & 0xF), _mm512_extracti32x4_epi32(v, 1));
+        _mm_mask_storeu_epi32(base + offset[2], __mmask8((mask >> 8) & 0xF), _mm512_extracti32x4_epi32(v, 2));
+        _mm_mask_storeu_epi32(base + offset[3], __mmask8(mask >> 12), _mm512_extracti32x4_epi32(v, 3));
+    }
+#else
     store_rows<kColumns>(base, offset, xsimd::select(pass, v, load_rows<kColumns>(base, offset)));
+#endif
 }
 
 // The lanes' column and row within a vector of a kColumns-wide stamp.
@@ -237,7 +256,11 @@ template <int kWidth>
             const auto pass = inside & (new_depth < old_depth);
             fragments += unsigned(std::popcount(inside_bits));
             passed += unsigned(std::popcount(lane_bits(pass)));
+#if XSIMD_WITH_AVX512F
+            update_rows<S::kColumns>(depth, offset, pass, new_depth);
+#else
             store_rows<S::kColumns>(depth, offset, xsimd::select(pass, new_depth, old_depth));
+#endif
             update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.triangle), offset, pass, id);
             update_rows<S::kColumns>(reinterpret_cast<std::int32_t*>(tile.lambda1), offset, pass,
                                      xsimd::bitwise_cast<Int>(lambda1));
