@@ -58,7 +58,9 @@ function(tessera_add_simd_kernels target)
       # ones through unions, and g++ then fuses a*b + c into an FMA in some
       # inlined copies of an expression and not in others, so two paths of one
       # kernel that the real build keeps bit-identical differ in the last bit
-      # (seen in shade_fragment_runs vs shade_fragments). Explicit fma() stays fused.
+      # (seen in shade_fragment_runs vs shade_fragments; real AVX-512 code did the
+      # same, so shade_kernels_simd.cpp is now built without contraction everywhere).
+      # Explicit fma() stays fused.
       target_compile_options(${obj} PRIVATE -Wno-psabi -ffp-contract=off)
     endif()
     if(ARG_NO_FP_CONTRACT)
