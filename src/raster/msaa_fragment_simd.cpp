@@ -66,9 +66,10 @@ struct Corners {
 };
 static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) == 12);
 
-[[gnu::always_inline]] inline Corners load_corners(const RasterTriangle* const* triangle) {
-    Corners c;
-#if XSIMD_WITH_AVX2 && !XSIMD_WITH_AVX512F
+#if XSIMD_WITH_AVX2
+// Words x0 x1 x2 y0 y1 y2 of eight records, a vector each (an 8×8 transpose
+// of their first 32 bytes, of which the box's two words are not kept).
+[[gnu::always_inline]] inline void load_corners8(const RasterTriangle* const* triangle, __m256i (&c)[6]) {
     __m256i r[8], t[8], u[8];
     for (int i = 0; i < 8; ++i) r[i] = _mm256_load_si256(reinterpret_cast<const __m256i*>(triangle[i]));
     for (int i = 0; i < 8; i += 2)
@@ -79,10 +80,27 @@ static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) ==
     }
     // u[j] (j < 4): word j of records 0-3 in its low half, word j + 4 of them
     // in its high half; u[j + 4] the same of records 4-7.
-    c.x0 = _mm256_permute2x128_si256(u[0], u[4], 0x20), c.y1 = _mm256_permute2x128_si256(u[0], u[4], 0x31);
-    c.x1 = _mm256_permute2x128_si256(u[1], u[5], 0x20), c.y2 = _mm256_permute2x128_si256(u[1], u[5], 0x31);
-    c.x2 = _mm256_permute2x128_si256(u[2], u[6], 0x20), c.y0 = _mm256_permute2x128_si256(u[3], u[7], 0x20);
-#elif !XSIMD_WITH_AVX
+    c[0] = _mm256_permute2x128_si256(u[0], u[4], 0x20), c[4] = _mm256_permute2x128_si256(u[0], u[4], 0x31);
+    c[1] = _mm256_permute2x128_si256(u[1], u[5], 0x20), c[5] = _mm256_permute2x128_si256(u[1], u[5], 0x31);
+    c[2] = _mm256_permute2x128_si256(u[2], u[6], 0x20), c[3] = _mm256_permute2x128_si256(u[3], u[7], 0x20);
+}
+#endif
+
+[[gnu::always_inline]] inline Corners load_corners(const RasterTriangle* const* triangle) {
+    Corners c;
+#if XSIMD_WITH_AVX512F
+    // Two sets of eight, one per 256-bit half.
+    __m256i low[6], high[6];
+    load_corners8(triangle, low);
+    load_corners8(triangle + 8, high);
+    Int w[6];
+    for (int k = 0; k < 6; ++k) w[k] = _mm512_inserti64x4(_mm512_castsi256_si512(low[k]), high[k], 1);
+    c.x0 = w[0], c.x1 = w[1], c.x2 = w[2], c.y0 = w[3], c.y1 = w[4], c.y2 = w[5];
+#elif XSIMD_WITH_AVX2
+    __m256i w[6];
+    load_corners8(triangle, w);
+    c.x0 = w[0], c.x1 = w[1], c.x2 = w[2], c.y0 = w[3], c.y1 = w[4], c.y2 = w[5];
+#else
     __m128 r[4];
     for (int i = 0; i < 4; ++i) r[i] = _mm_load_ps(reinterpret_cast<const float*>(triangle[i]));
     _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);  // x0 x1 x2 y0
@@ -90,12 +108,6 @@ static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) ==
     for (int i = 0; i < 4; ++i) r[i] = _mm_load_ps(reinterpret_cast<const float*>(triangle[i]) + 4);
     _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);  // y1 y2, the box
     c.y1 = _mm_castps_si128(r[0]), c.y2 = _mm_castps_si128(r[1]);
-#else  // AVX-512: lane by lane
-    alignas(64) std::int32_t w[6][kLanes];
-    for (std::size_t i = 0; i < kLanes; ++i)
-        for (int k = 0; k < 3; ++k) w[k][i] = triangle[i]->x[k], w[3 + k][i] = triangle[i]->y[k];
-    c.x0 = Int::load_aligned(w[0]), c.x1 = Int::load_aligned(w[1]), c.x2 = Int::load_aligned(w[2]);
-    c.y0 = Int::load_aligned(w[3]), c.y1 = Int::load_aligned(w[4]), c.y2 = Int::load_aligned(w[5]);
 #endif
     alignas(64) float inv_area[kLanes];
     for (std::size_t i = 0; i < kLanes; ++i) inv_area[i] = triangle[i]->inv_area;

@@ -42,9 +42,7 @@ Int biased_edge(const Int& ax, const Int& ay, const Int& bx, const Int& by, cons
 // Bit `lane` set for each true lane (xsimd 8.1 has no movemask).
 std::uint64_t lane_bits(const Mask& m) {
 #if defined(__AVX512F__)
-    alignas(64) std::int32_t powers[kLanes];
-    for (int lane = 0; lane < kLanes; ++lane) powers[lane] = std::int32_t(1) << lane;
-    return std::uint32_t(xsimd::hadd(xsimd::select(m, Int::load_aligned(powers), Int(0))));
+    return std::uint32_t(m.data);  // the mask register
 #elif defined(__AVX2__)
     return std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(m)));
 #else
@@ -54,7 +52,22 @@ std::uint64_t lane_bits(const Mask& m) {
 
 // The corner indices of kLanes triangles (3 per triangle, from `indices`), a vector per corner.
 void load_indices(const std::uint32_t* indices, Int (&index)[3]) {
-#if defined(__AVX2__) && !defined(__AVX512F__)
+#if defined(__AVX512F__)
+    // Corner k of triangle j is word 3j + k of three registers' 48: picked
+    // from the first two by one two-register permute, then from the third
+    // where 3j + k >= 32.
+    const __m512i a = _mm512_loadu_si512(indices), b = _mm512_loadu_si512(indices + 16),
+                  c = _mm512_loadu_si512(indices + 32);
+    for (int k = 0; k < 3; ++k) {
+        const __m512i word = _mm512_add_epi32(
+            _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                               _mm512_set1_epi32(3)),
+            _mm512_set1_epi32(k));
+        const __m512i from_ab = _mm512_permutex2var_epi32(a, word, b);  // uses word's low 5 bits
+        const __mmask16 in_c = _mm512_cmpge_epi32_mask(word, _mm512_set1_epi32(32));
+        index[k] = Int(_mm512_mask_permutexvar_epi32(from_ab, in_c, _mm512_sub_epi32(word, _mm512_set1_epi32(32)), c));
+    }
+#elif defined(__AVX2__)
     // Corner k of triangle j is word 3j + k of three registers' 24: blend the
     // three so each lane holds a word of its corner, then put them in order.
     const auto* words = reinterpret_cast<const __m256i*>(indices);
