@@ -341,6 +341,12 @@ template <int kWidth>
     if (width <= kMaxTinyWidth && tiny(t)) {
         // The narrowest stamp the box fits in.
         const TinyBox box{x_begin, x_end, y_begin, y_end, tile.x0, tile.y0};
+#if XSIMD_WITH_AVX512F
+        // AVX-512's 4-wide stamp is 4 rows a vector, 16 row stores a vector;
+        // a box of at most 2 rows (most tiny ones) takes the 8-wide stamp,
+        // 2 rows a vector: half the stores.
+        if (width <= 4 && y_end - y_begin <= 2) return rasterize_tiny<8>(t, triangle_id, box, view, counters);
+#endif
         if (width <= 4) return rasterize_tiny<4>(t, triangle_id, box, view, counters);
         if (width <= 8) return rasterize_tiny<8>(t, triangle_id, box, view, counters);
         return rasterize_tiny<16>(t, triangle_id, box, view, counters);
