@@ -110,8 +110,14 @@ template <bool kWide>
             const Int old_depth = Int::load_unaligned(depth);
             const IntMask pass = inside & (new_depth < old_depth);
             passed += unsigned(std::popcount(lane_bits(pass)));
+#if XSIMD_WITH_AVX512F
+            // Masked stores: no read-back of the triangle ids (AVX2's vpmaskmovd is microcoded on AMD).
+            _mm512_mask_storeu_epi32(depth, pass.data, new_depth);
+            _mm512_mask_storeu_epi32(triangle, pass.data, id);
+#else
             xsimd::select(pass, new_depth, old_depth).store_unaligned(depth);
             xsimd::select(pass, id, Int::load_unaligned(triangle)).store_unaligned(triangle);
+#endif
         }
         for (int k = 0; k < 3; ++k) edges.row[k] += edges.down[k];
         if constexpr (kWide) wide.row[0] += wide.down[0], wide.row[1] += wide.down[1];

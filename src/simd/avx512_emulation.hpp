@@ -134,6 +134,17 @@ inline simde__m512 rsqrt14_ps(simde__m512 a) {
     return simde__m512_from_private(v);
 }
 
+// VMOVDQU32 m{k}, v (512, 256 and 128 bits): lane i of `a` stored to
+// base + 4i where bit i of `mask` is set; the other lanes' memory untouched.
+template <class Vector>
+void mask_storeu_epi32(void* base, unsigned mask, Vector a) {
+    constexpr int kLanes = int(sizeof(Vector) / 4);
+    std::int32_t lanes[kLanes];
+    std::memcpy(lanes, &a, sizeof lanes);
+    for (int i = 0; i < kLanes; ++i)
+        if ((mask >> i) & 1u) std::memcpy(static_cast<char*>(base) + 4 * i, &lanes[i], 4);
+}
+
 }  // namespace tessera::simd::emulated
 
 // Missing from SIMDe 0.7.4.
@@ -152,6 +163,9 @@ inline simde__m512 rsqrt14_ps(simde__m512 a) {
 #define _mm512_i32gather_ps(index, base, scale) \
     (::tessera::simd::emulated::gather_32<float, simde__m512>((index), (base), (scale)))
 #define _mm512_rsqrt14_ps(a) ::tessera::simd::emulated::rsqrt14_ps(a)
+#define _mm512_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
+#define _mm256_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
+#define _mm_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
 
 #define __AVX512F__ 1
 #define __AVX512CD__ 1

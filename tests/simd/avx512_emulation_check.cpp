@@ -111,6 +111,26 @@ int avx512_emulation_mismatches(std::string& first) {
                    same_bytes(high_ps(gathered_f), _mm256_i32gather_ps(fbase, high_si(vi), 4)), "_mm512_i32gather_ps");
         const __m256 upper = _mm512_extractf32x8_ps(vf, 1), lower = _mm512_extractf32x8_ps(vf, 0);
         expect(std::memcmp(&lower, f, 32) == 0 && std::memcmp(&upper, f + 8, 32) == 0, "_mm512_extractf32x8_ps");
+        // Masked stores against AVX2's vpmaskmovd (a lane's sign bit as its mask bit).
+        const unsigned store_mask = unsigned(rng()) & 0xFFFFu;
+        const auto mask_vector = [](unsigned bits) {
+            alignas(32) std::int32_t lanes[8];
+            for (int i = 0; i < 8; ++i) lanes[i] = (bits >> i) & 1u ? -1 : 0;
+            return _mm256_load_si256(reinterpret_cast<const __m256i*>(lanes));
+        };
+        alignas(64) std::int32_t stored[16], expected_store[16];
+        for (int i = 0; i < 16; ++i) stored[i] = expected_store[i] = m[i];
+        _mm512_mask_storeu_epi32(stored, store_mask, vk);
+        _mm256_maskstore_epi32(expected_store, mask_vector(store_mask & 0xFFu), low_si(vk));
+        _mm256_maskstore_epi32(expected_store + 8, mask_vector(store_mask >> 8), high_si(vk));
+        expect(std::memcmp(stored, expected_store, sizeof stored) == 0, "_mm512_mask_storeu_epi32");
+        for (int i = 0; i < 16; ++i) stored[i] = expected_store[i] = m[i];
+        _mm256_mask_storeu_epi32(stored + 3, __mmask8(store_mask), high_si(vk));
+        _mm256_maskstore_epi32(expected_store + 3, mask_vector(store_mask & 0xFFu), high_si(vk));
+        _mm_mask_storeu_epi32(stored + 11, __mmask8(store_mask >> 8), _mm256_castsi256_si128(low_si(vk)));
+        _mm_maskstore_epi32(expected_store + 11, _mm256_castsi256_si128(mask_vector((store_mask >> 8) & 0xFu)),
+                            _mm256_castsi256_si128(low_si(vk)));
+        expect(std::memcmp(stored, expected_store, sizeof stored) == 0, "_mm256/_mm_mask_storeu_epi32");
         // rsqrt14: within the hardware's bound of 2^-14 relative, for positive normal inputs.
         alignas(64) float positive[16], estimate[16];
         for (int i = 0; i < 16; ++i) positive[i] = std::fabs(narrow(rng)) + 1e-3f;
