@@ -1,6 +1,6 @@
 // The resolve's pixel loop (resolve_kernels.hpp), compiled once per ISA.
-// With AVX2 (and in the AVX-512 copy, which runs the same 8-lane code) a row
-// goes 8 pixels at a time: their coverage mask picks a permutation that
+// With AVX2 (and in the AVX-512 copy for the last 8-15 pixels of a row, after
+// 16 at a time by vpexpandd) a row goes 8 pixels at a time: their coverage mask picks a permutation that
 // spreads the next covered pixels' colours over the covered lanes (an expand:
 // AVX-512's vpexpandd, built here from vpermd and a table), and a byte
 // shuffle packs 8 RGBX pixels into 24 RGB bytes. Radiance rows spread three
@@ -77,6 +77,28 @@ void TESSERA_SIMD_ENTRY(write_display_rows)(const DisplayRows& rows) {
     std::uint8_t* display = rows.display;
     for (int y = 0; y < rows.height; ++y, depth += rows.side, display += rows.stride) {
         int x = 0;
+#if defined(__AVX512F__)
+        // 16 pixels at a time: vpexpandd spreads the next covered colours over
+        // the covered lanes and keeps the clear colour in the others; RGBX → RGB
+        // within each 128-bit quarter, the quarters' 12 bytes joined, 48 bytes stored.
+        {
+            const __m512 one = _mm512_set1_ps(1.0f);
+            const __m512i clear = _mm512_set1_epi32(std::int32_t(rows.clear));
+            const __m512i pack_bytes = _mm512_broadcast_i32x4(
+                _mm_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1));
+            const __m512i join_quarters = _mm512_setr_epi32(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, 3, 7, 11, 15);
+            for (; x + 16 <= rows.width; x += 16) {
+                const __mmask16 covered_lanes = _mm512_cmp_ps_mask(_mm512_loadu_ps(depth + x), one, _CMP_LT_OQ);
+                const unsigned covered = unsigned(std::popcount(unsigned(covered_lanes)));
+                // The next `covered` colours (no lane past them is read: the array may end there).
+                const __m512i next = _mm512_maskz_loadu_epi32(__mmask16((1u << covered) - 1u), rows.encoded + cursor.k);
+                const __m512i pixels = _mm512_mask_expand_epi32(clear, covered_lanes, next);
+                cursor.k += covered;
+                const __m512i rgb = _mm512_permutexvar_epi32(join_quarters, _mm512_shuffle_epi8(pixels, pack_bytes));
+                _mm512_mask_storeu_epi32(display + 3 * x, __mmask16(0x0FFF), rgb);
+            }
+        }
+#endif
 #if defined(__AVX2__)
         const __m256 one = _mm256_set1_ps(1.0f);
         const __m256i clear = _mm256_set1_epi32(std::int32_t(rows.clear));

@@ -145,6 +145,30 @@ void mask_storeu_epi32(void* base, unsigned mask, Vector a) {
         if ((mask >> i) & 1u) std::memcpy(static_cast<char*>(base) + 4 * i, &lanes[i], 4);
 }
 
+// VMOVDQU32 zmm{k}{z}, m: lane i from base + 4i where bit i of `mask` is set
+// (no other lane's memory is read), 0 elsewhere.
+inline simde__m512i maskz_loadu_epi32(unsigned mask, const void* base) {
+    std::int32_t lanes[16] = {};
+    for (int i = 0; i < 16; ++i)
+        if ((mask >> i) & 1u) std::memcpy(&lanes[i], static_cast<const char*>(base) + 4 * i, 4);
+    simde__m512i out;
+    std::memcpy(&out, lanes, sizeof out);
+    return out;
+}
+
+// VPEXPANDD zmm{k}, zmm with merging: the set lanes of `mask` take a's lanes
+// 0, 1, 2, ... in order; the others keep src's.
+inline simde__m512i mask_expand_epi32(simde__m512i src, unsigned mask, simde__m512i a) {
+    std::int32_t out[16], in[16];
+    std::memcpy(out, &src, sizeof out);
+    std::memcpy(in, &a, sizeof in);
+    for (int i = 0, next = 0; i < 16; ++i)
+        if ((mask >> i) & 1u) out[i] = in[next++];
+    simde__m512i result;
+    std::memcpy(&result, out, sizeof result);
+    return result;
+}
+
 }  // namespace tessera::simd::emulated
 
 // Missing from SIMDe 0.7.4.
@@ -165,6 +189,8 @@ void mask_storeu_epi32(void* base, unsigned mask, Vector a) {
 #define _mm512_rsqrt14_ps(a) ::tessera::simd::emulated::rsqrt14_ps(a)
 #define _mm512_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
 #define _mm256_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
+#define _mm512_maskz_loadu_epi32(mask, base) ::tessera::simd::emulated::maskz_loadu_epi32(unsigned(mask), (base))
+#define _mm512_mask_expand_epi32(src, mask, a) ::tessera::simd::emulated::mask_expand_epi32((src), unsigned(mask), (a))
 #define _mm_mask_storeu_epi32(base, mask, a) ::tessera::simd::emulated::mask_storeu_epi32((base), unsigned(mask), (a))
 
 #define __AVX512F__ 1

@@ -131,6 +131,15 @@ int avx512_emulation_mismatches(std::string& first) {
         _mm_maskstore_epi32(expected_store + 11, _mm256_castsi256_si128(mask_vector((store_mask >> 8) & 0xFu)),
                             _mm256_castsi256_si128(low_si(vk)));
         expect(std::memcmp(stored, expected_store, sizeof stored) == 0, "_mm256/_mm_mask_storeu_epi32");
+        // The masked load against vpmaskmovd's load; the expand against its definition.
+        const __m512i loaded = _mm512_maskz_loadu_epi32(__mmask16(store_mask), k);
+        expect(same_bytes(low_si(loaded), _mm256_maskload_epi32(k, mask_vector(store_mask & 0xFFu))) &&
+                   same_bytes(high_si(loaded), _mm256_maskload_epi32(k + 8, mask_vector(store_mask >> 8))),
+               "_mm512_maskz_loadu_epi32");
+        alignas(64) std::int32_t expanded[16], expected_expand[16];
+        simde_mm512_store_si512(expanded, _mm512_mask_expand_epi32(vm, __mmask16(store_mask), vk));
+        for (int i = 0, next = 0; i < 16; ++i) expected_expand[i] = (store_mask >> i) & 1u ? k[next++] : m[i];
+        expect(std::memcmp(expanded, expected_expand, sizeof expanded) == 0, "_mm512_mask_expand_epi32");
         // rsqrt14: within the hardware's bound of 2^-14 relative, for positive normal inputs.
         alignas(64) float positive[16], estimate[16];
         for (int i = 0; i < 16; ++i) positive[i] = std::fabs(narrow(rng)) + 1e-3f;
