@@ -67,7 +67,7 @@ Batch inverse_sqrt_refined(const Batch& x) {
 #else
     const Batch r = xsimd::rsqrt(x);
 #endif
-    return (r * Batch(0.5f)) * xsimd::fnma(x * r, r, Batch(3.0f));
+    return (r * Batch(0.5f)) * fnma(x * r, r, Batch(3.0f));
 }
 
 // A fragment batch's terms that do not depend on the light.
@@ -94,19 +94,19 @@ struct LightTerms {
     // half = V + L, not normalized: N·H = N·half/|half|. Formed as a vector
     // (not as |V|² + 2·V·L + |L|²) so that |half|² − N·half², which the GGX
     // term cancels down to, rounds like the reference's.
-    const Vec3 half = {xsimd::fma(to_light.x, inv_length, s.v.x), xsimd::fma(to_light.y, inv_length, s.v.y),
-                       xsimd::fma(to_light.z, inv_length, s.v.z)};
+    const Vec3 half = {fma(to_light.x, inv_length, s.v.x), fma(to_light.y, inv_length, s.v.y),
+                       fma(to_light.z, inv_length, s.v.z)};
     const Batch half_sq = dot(half, half);
     const Batch n_dot_to_light = dot(s.n, to_light);
     const Batch n_dot_l = max0(n_dot_to_light * inv_length);
-    const Batch n_dot_half = max0(xsimd::fma(n_dot_to_light, inv_length, s.n_dot_v_raw));
+    const Batch n_dot_half = max0(fma(n_dot_to_light, inv_length, s.n_dot_v_raw));
 
     // E·spec' = E·N·L·|half|⁴ / (ggx²·(N·L·(1 − k) + k)·(4·N·V·N·L + 0.0001)),
     // ggx = N·half²·(a² − 1) + |half|²: one division (a Newton-refined
     // reciprocal measured no faster: the divider takes ~2 multiply-add slots).
-    const Batch ggx = xsimd::fma(n_dot_half * n_dot_half, s.a2_minus_1, half_sq);
-    const Batch g_l_denominator = xsimd::fma(n_dot_l, s.one_minus_k, s.k);
-    const Batch cook_torrance_denominator = xsimd::fma(s.four_n_dot_v, n_dot_l, Batch(0.0001f));
+    const Batch ggx = fma(n_dot_half * n_dot_half, s.a2_minus_1, half_sq);
+    const Batch g_l_denominator = fma(n_dot_l, s.one_minus_k, s.k);
+    const Batch cook_torrance_denominator = fma(s.four_n_dot_v, n_dot_l, Batch(0.0001f));
     const Batch denominator = (ggx * ggx) * (g_l_denominator * cook_torrance_denominator);
     const Batch irradiance = attenuation * n_dot_l;  // E
     const Batch e_spec = ((irradiance * n_dot_l) * (half_sq * half_sq)) / denominator;
@@ -114,10 +114,10 @@ struct LightTerms {
     // H·V = (V + L)·V/|half| = (1 + L·V)/|half| = |half|/2 for unit V and L;
     // w = x⁵, x = 1 − H·V clamped at 0 (H·V may round above 1), by
     // multiplication, as E·x·x⁴ to shorten the chain.
-    const Batch x = max0(xsimd::fnma(Batch(0.5f), xsimd::sqrt(half_sq), Batch(1.0f)));
+    const Batch x = max0(fnma(Batch(0.5f), xsimd::sqrt(half_sq), Batch(1.0f)));
     const Batch x2 = x * x;
     const Batch x4 = x2 * x2;
-    return {xsimd::fnma(irradiance * x, x4, irradiance), e_spec, (e_spec * x) * x4};
+    return {fnma(irradiance * x, x4, irradiance), e_spec, (e_spec * x) * x4};
 }
 
 // The terms in the lanes of `reaches`, 0 elsewhere: in those lanes the bits of
@@ -142,9 +142,9 @@ template <class Colour>
                                               const Colour& color_g, const Colour& color_b) {
     const auto add_channel = [&](const Colour& color, Batch& diffuse, Batch& specular, Batch& specular_w) {
         const Batch c(color);
-        diffuse = xsimd::fma(c, t.diffuse, diffuse);
-        specular = xsimd::fma(c, t.specular, specular);
-        specular_w = xsimd::fma(c, t.specular_w, specular_w);
+        diffuse = fma(c, t.diffuse, diffuse);
+        specular = fma(c, t.specular, specular);
+        specular_w = fma(c, t.specular_w, specular_w);
     };
     add_channel(color_r, sums.diffuse.x, sums.specular.x, sums.specular_w.x);
     add_channel(color_g, sums.diffuse.y, sums.specular.y, sums.specular_w.y);
@@ -212,9 +212,9 @@ template <class Lights>
 [[gnu::always_inline]] inline void add(Sums& sums, const Lights& lights, std::size_t j, const LightTerms& t) {
     if constexpr (grey_lights<Lights>) {
         const Batch c(lights.color_r[j]);
-        sums.diffuse.x = xsimd::fma(c, t.diffuse, sums.diffuse.x);
-        sums.specular.x = xsimd::fma(c, t.specular, sums.specular.x);
-        sums.specular_w.x = xsimd::fma(c, t.specular_w, sums.specular_w.x);
+        sums.diffuse.x = fma(c, t.diffuse, sums.diffuse.x);
+        sums.specular.x = fma(c, t.specular, sums.specular.x);
+        sums.specular_w.x = fma(c, t.specular_w, sums.specular_w.x);
     } else {
         accumulate(sums, t, lights.color_r[j], lights.color_g[j], lights.color_b[j]);
     }
@@ -333,8 +333,8 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     s.n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
     s.v = normalize(cam_pos - s.world_pos);
     const Batch f0_base(0.04f);  // mix(vec3(0.04), albedo, metallic)
-    const Vec3 f0 = {xsimd::fma(albedo.x - f0_base, metallic, f0_base), xsimd::fma(albedo.y - f0_base, metallic, f0_base),
-                     xsimd::fma(albedo.z - f0_base, metallic, f0_base)};
+    const Vec3 f0 = {fma(albedo.x - f0_base, metallic, f0_base), fma(albedo.y - f0_base, metallic, f0_base),
+                     fma(albedo.z - f0_base, metallic, f0_base)};
     const Batch a = roughness * roughness;
     const Batch a2 = a * a;
     s.a2_minus_1 = a2 - Batch(1.0f);
@@ -343,7 +343,7 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     s.one_minus_k = Batch(1.0f) - s.k;
     s.n_dot_v_raw = dot(s.n, s.v);
     const Batch n_dot_v = max0(s.n_dot_v_raw);
-    const Batch g_v = n_dot_v / xsimd::fma(n_dot_v, s.one_minus_k, s.k);  // geometry_schlick_ggx(N·V)
+    const Batch g_v = n_dot_v / fma(n_dot_v, s.one_minus_k, s.k);  // geometry_schlick_ggx(N·V)
     const Batch spec_numerator = a2 * g_v * Batch(1.0f / kPi);  // a²·G(N·V)/π: spec = spec_numerator·spec'
 
     s.four_n_dot_v = Batch(4.0f) * n_dot_v;
@@ -361,9 +361,9 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
     const Batch ambient = Batch(0.03f) * ao;
     const auto radiance = [&](const Batch& albedo_c, const Batch& f0_c, const Batch& diffuse_sum,
                               const Batch& specular_sum, const Batch& specular_w_sum) {
-        const Batch diffuse_and_w = xsimd::fma(spec_numerator, specular_w_sum, (albedo_c * diffuse_scale) * diffuse_sum);
-        const Batch lo = xsimd::fma(f0_c * spec_numerator, specular_sum, (Batch(1.0f) - f0_c) * diffuse_and_w);
-        return xsimd::fma(albedo_c, ambient, lo);
+        const Batch diffuse_and_w = fma(spec_numerator, specular_w_sum, (albedo_c * diffuse_scale) * diffuse_sum);
+        const Batch lo = fma(f0_c * spec_numerator, specular_sum, (Batch(1.0f) - f0_c) * diffuse_and_w);
+        return fma(albedo_c, ambient, lo);
     };
     if constexpr (grey_lights<Lights>) {  // green and blue summed as red
         sums.diffuse.y = sums.diffuse.z = sums.diffuse.x;

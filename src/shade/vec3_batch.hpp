@@ -18,6 +18,24 @@ using Arch = TESSERA_SIMD_ARCH;
 using Batch = xsimd::batch<float, Arch>;
 using Mask = xsimd::batch_bool<float, Arch>;
 
+// a·b + c and c − a·b, fused where the ISA has FMA. xsimd 8.1's avx512 backend
+// has no fma kernel (its generic one is a·b + c, fused only by the compiler's
+// contraction, and not at all in a file built without it), hence the intrinsics.
+inline Batch fma(const Batch& a, const Batch& b, const Batch& c) {
+#if XSIMD_WITH_AVX512F
+    return _mm512_fmadd_ps(a, b, c);
+#else
+    return xsimd::fma(a, b, c);
+#endif
+}
+inline Batch fnma(const Batch& a, const Batch& b, const Batch& c) {
+#if XSIMD_WITH_AVX512F
+    return _mm512_fnmadd_ps(a, b, c);
+#else
+    return xsimd::fnma(a, b, c);
+#endif
+}
+
 struct Vec3 {
     Batch x, y, z;
 };
@@ -29,7 +47,7 @@ inline Vec3 operator*(const Vec3& a, const Batch& s) { return {a.x * s, a.y * s,
 // (x·x' + y·y') + z·z' with the products after the first fused where the ISA has
 // FMA: written out, because a file built without contraction (shade_kernels_simd.cpp)
 // must still fuse them, and one built with it must not leave it to the context.
-inline Batch dot(const Vec3& a, const Vec3& b) { return xsimd::fma(a.z, b.z, xsimd::fma(a.y, b.y, a.x * b.x)); }
+inline Batch dot(const Vec3& a, const Vec3& b) { return fma(a.z, b.z, fma(a.y, b.y, a.x * b.x)); }
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
