@@ -116,8 +116,8 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
         if (transposed) {
             const auto load = [&](const float* base, std::size_t stride, Float& a, Float& b, Float& c) {
                 __m256 h[kLanes / 8][3];
-                for (std::size_t half = 0; half < kLanes / 8; ++half)
-                    load_records8(base, stride, first + 8 * half, h[half]);
+                for (std::size_t part = 0; part < kLanes / 8; ++part)
+                    load_records8(base, stride, first + 8 * part, h[part]);
 #if defined(__AVX512F__)
                 a = join(h[0][0], h[1][0]), b = join(h[0][1], h[1][1]), c = join(h[0][2], h[1][2]);
 #else
