@@ -86,17 +86,15 @@ void store_records8(const VertexRunOutput& out, std::size_t first, __m256 (&word
     }
 }
 
-// Lanes 8h .. 8h + 8 of a vector, and two such halves as one vector.
-#if defined(__AVX512F__)
+// Lanes 8h .. 8h + 8 of a vector (simd::half_of, or the AVX2 vector itself).
 __m256 half_of(const Float& x, std::size_t h) {
-    return h == 0 ? _mm512_castps512_ps256(x) : _mm512_extractf32x8_ps(x, 1);
-}
-Float join(const __m256& low, const __m256& high) {
-    return _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
-}
+#if defined(__AVX512F__)
+    return simd::half_of(x, int(h));
 #else
-__m256 half_of(const Float& x, std::size_t) { return x; }
+    (void)h;
+    return x;
 #endif
+}
 #endif
 
 void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
@@ -119,7 +117,8 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
                 for (std::size_t part = 0; part < kLanes / 8; ++part)
                     load_records8(base, stride, first + 8 * part, h[part]);
 #if defined(__AVX512F__)
-                a = join(h[0][0], h[1][0]), b = join(h[0][1], h[1][1]), c = join(h[0][2], h[1][2]);
+                a = simd::join_halves(h[0][0], h[1][0]), b = simd::join_halves(h[0][1], h[1][1]);
+                c = simd::join_halves(h[0][2], h[1][2]);
 #else
                 a = h[0][0], b = h[0][1], c = h[0][2];
 #endif

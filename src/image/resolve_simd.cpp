@@ -1,8 +1,8 @@
 // The resolve's pixel loop (resolve_kernels.hpp), compiled once per ISA.
-// With AVX2 (and in the AVX-512 copy for the last 8-15 pixels of a row, after
-// 16 at a time by vpexpandd) a row goes 8 pixels at a time: their coverage mask picks a permutation that
-// spreads the next covered pixels' colours over the covered lanes (an expand:
-// AVX-512's vpexpandd, built here from vpermd and a table), and a byte
+// With AVX2 (and in the AVX-512 copy for a row's last 8-15 pixels, after 16
+// at a time by vpexpandd) a row goes 8 pixels at a time: their coverage mask
+// picks a permutation that spreads the next covered pixels' colours over the
+// covered lanes (an expand, built here from vpermd and a table), and a byte
 // shuffle packs 8 RGBX pixels into 24 RGB bytes. Radiance rows spread three
 // float planes the same way and interleave them into 24 RGB floats.
 // Hand-written intrinsics:

@@ -6,6 +6,7 @@
 
 #include "simd/kernel_prelude.hpp"
 #include "simd/lane_helpers.hpp"
+#include "simd/transpose.hpp"
 
 #include "raster/msaa_fragment_kernels.hpp"
 #include "raster/msaa_list_kernel.hpp"
@@ -94,7 +95,7 @@ static_assert(offsetof(RasterTriangle, x) == 0 && offsetof(RasterTriangle, y) ==
     load_corners8(triangle, low);
     load_corners8(triangle + 8, high);
     Int w[6];
-    for (int k = 0; k < 6; ++k) w[k] = _mm512_inserti64x4(_mm512_castsi256_si512(low[k]), high[k], 1);
+    for (int k = 0; k < 6; ++k) w[k] = simd::join_halves(low[k], high[k]);
     c.x0 = w[0], c.x1 = w[1], c.x2 = w[2], c.y0 = w[3], c.y1 = w[4], c.y2 = w[5];
 #elif XSIMD_WITH_AVX2
     __m256i w[6];

@@ -12,6 +12,7 @@
 
 #include "simd/kernel_prelude.hpp"
 
+#include "simd/lane_helpers.hpp"
 #include "simd/transpose.hpp"
 
 #include "geometry/clipper.hpp"
@@ -39,16 +40,8 @@ Int biased_edge(const Int& ax, const Int& ay, const Int& bx, const Int& by, cons
     return dx * (py - ay) - dy * (px - ax) + bias;
 }
 
-// Bit `lane` set for each true lane (xsimd 8.1 has no movemask).
-std::uint64_t lane_bits(const Mask& m) {
-#if defined(__AVX512F__)
-    return std::uint32_t(m.data);  // the mask register
-#elif defined(__AVX2__)
-    return std::uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(m)));
-#else
-    return std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(m)));
-#endif
-}
+// Bit `lane` set for each true lane, widened for the batch's 64-bit lane sets.
+std::uint64_t lane_bits(const Mask& m) { return simd::lane_bits(m); }
 
 // The corner indices of kLanes triangles (3 per triangle, from `indices`), a vector per corner.
 void load_indices(const std::uint32_t* indices, Int (&index)[3]) {
@@ -109,7 +102,7 @@ Corner load_corner(const std::int32_t* screen, const std::int32_t* ref) {
                                                 _mm_loadu_ps(vertex(j + 4)), 1);
         const __m256 high = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(vertex(j + 8))),
                                                  _mm_loadu_ps(vertex(j + 12)), 1);
-        v[j] = _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
+        v[j] = simd::join_halves(low, high);
     }
     simd::transpose4x4_quarters(v);
     return {Int(_mm512_castps_si512(v[0])), Int(_mm512_castps_si512(v[1])), Int(_mm512_castps_si512(v[2])),
@@ -155,10 +148,7 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
     for (int half = 0; half < 2; ++half)
         for (int part = 0; part < 2; ++part) {
             __m256 r[8];
-            for (int w = 0; w < 8; ++w) {
-                const __m512 word = _mm512_castsi512_ps(words[8 * part + w]);
-                r[w] = half == 0 ? _mm512_castps512_ps256(word) : _mm512_extractf32x8_ps(word, 1);
-            }
+            for (int w = 0; w < 8; ++w) r[w] = simd::half_of(_mm512_castsi512_ps(words[8 * part + w]), half);
             simd::transpose8x8(r);
             for (int j = 0; j < 8; ++j)
                 _mm256_store_ps(reinterpret_cast<float*>(&records[at[8 * half + j]]) + 8 * part, r[j]);

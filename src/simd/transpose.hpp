@@ -33,6 +33,16 @@ inline void transpose8x8(__m256 (&r)[8]) {
 }
 
 #if defined(__AVX512F__)
+// Lanes 8h .. 8h + 8 of a 512-bit vector (h = 0 or 1), and two 256-bit halves
+// as one vector: for running the 8-lane transposes above on each half.
+inline __m256 half_of(__m512 x, int h) { return h == 0 ? _mm512_castps512_ps256(x) : _mm512_extractf32x8_ps(x, 1); }
+inline __m512 join_halves(__m256 low, __m256 high) {
+    return _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
+}
+inline __m512i join_halves(__m256i low, __m256i high) {
+    return _mm512_inserti64x4(_mm512_castsi256_si512(low), high, 1);
+}
+
 // transpose4x4_halves for 512 bits: 4×4 within each 128-bit quarter.
 inline void transpose4x4_quarters(__m512 (&r)[4]) {
     const __m512 t0 = _mm512_unpacklo_ps(r[0], r[1]), t1 = _mm512_unpacklo_ps(r[2], r[3]);
