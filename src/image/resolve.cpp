@@ -140,6 +140,34 @@ ClearValues clear_values(const glm::vec3& clear_color) {
             {quantize_unorm8(clear_color.r), quantize_unorm8(clear_color.g), quantize_unorm8(clear_color.b)}};
 }
 
+namespace {
+
+// Prefetches for writing every cache line of `rows` rows of `row_bytes` bytes, `stride` apart.
+void prefetch_rows_for_write(const std::uint8_t* first, std::size_t row_bytes, std::size_t stride, int rows) {
+    for (int y = 0; y < rows; ++y) {
+        const std::uint8_t* row = first + std::size_t(y) * stride;
+        // Probes at most a line apart, and the last byte: every line the row touches.
+        for (std::size_t b = 0; b < row_bytes; b += 64) __builtin_prefetch(row + b, 1);
+        __builtin_prefetch(row + row_bytes - 1, 1);
+    }
+}
+
+}  // namespace
+
+void prefetch_tile_output(const raster::TileRect& rect, const RenderedImage& image) {
+    const std::size_t pixels = std::size_t(rect.width()) * std::size_t(rect.height());
+    const std::size_t bytes = (image.display.empty() ? 0 : 3) + (image.radiance.empty() ? 0 : 3 * sizeof(float));
+    if (pixels == 0 || pixels * bytes > kPrefetchTileOutputBytes) return;
+    const std::size_t first = std::size_t(rect.y0) * std::size_t(image.width) + std::size_t(rect.x0);
+    if (!image.display.empty())
+        prefetch_rows_for_write(&image.display[3 * first], 3 * std::size_t(rect.width()), 3 * std::size_t(image.width),
+                                rect.height());
+    if (!image.radiance.empty())
+        prefetch_rows_for_write(reinterpret_cast<const std::uint8_t*>(&image.radiance[3 * first]),
+                                3 * sizeof(float) * std::size_t(rect.width()),
+                                3 * sizeof(float) * std::size_t(image.width), rect.height());
+}
+
 void clear_tile(const raster::TileRect& rect, const ClearValues& clear, RenderedImage& image) {
     clear_tile_display(rect, clear, image);
     const glm::vec3& clear_radiance = clear.radiance;

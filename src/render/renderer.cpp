@@ -558,6 +558,7 @@ bool Renderer::Frame::rasterize_bins(int tile, WorkerScratch& s, Reset&& reset, 
 
 void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
+    image::prefetch_tile_output(rect, image);
     const auto t0 = Clock::now();
     const bool drawn = rasterize_bins(tile, s, [&] { s.raster.reset(grid.tile_size); },
                                       [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
@@ -589,6 +590,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
 // fragment per pixel and visible triangle, pixels the mean of their samples.
 void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearValues& clear, int tile, WorkerScratch& s) {
     const raster::TileRect rect = grid.rect(tile);
+    image::prefetch_tile_output(rect, image);
     const auto t0 = Clock::now();
     const bool drawn = rasterize_bins(tile, s, [&] { s.samples.reset(grid.tile_size); },
                                       [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
