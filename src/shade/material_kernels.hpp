@@ -20,7 +20,7 @@ struct NormalMapBatch {
     const float* duv_dx[2] = {};
     const float* duv_dy[2] = {};
     const float* tangent[4] = {};  // w = 0: none stored, derive the frame
-    float* normal[3] = {};         // in: interpolated normals; out: the shading normals, unit length
+    float* normal[3] = {};         // in: interpolated normals; out: the shading normals, unit length (only [0, count) written)
 };
 
 // In place, c = pow(c, 2.2) for the reference's albedo maps.

@@ -3,6 +3,7 @@
 // shade_kernels_simd.cpp. Same formulas as the scalar reference in
 // material_maps.cpp; where the reference branches per fragment (stored
 // tangent or not, degenerate frame) the lanes compute both and select.
+#include <algorithm>
 #include <cstddef>
 
 #include "simd/kernel_prelude.hpp"
@@ -76,8 +77,7 @@ void TESSERA_SIMD_ENTRY(pow_2_2)(std::size_t count, float* r, float* g, float* b
 }
 
 void TESSERA_SIMD_ENTRY(perturb_normals)(const NormalMapBatch& in, DerivedTangentFrame frame) {
-    const std::size_t end = simd::padded_count(in.count);
-    for (std::size_t i = 0; i < end; i += Batch::size) {
+    const auto shading_normals = [&](std::size_t i) {
         Vec3 tangent_normal = load3(in.map, i) * Batch(2.0f) - Vec3{Batch(1.0f), Batch(1.0f), Batch(1.0f)};
         tangent_normal.x *= Batch(in.scale), tangent_normal.y *= Batch(in.scale);
         const Vec3 n = normalize(load3(in.normal, i));
@@ -89,10 +89,26 @@ void TESSERA_SIMD_ENTRY(perturb_normals)(const NormalMapBatch& in, DerivedTangen
         const Vec3 derived = frame == DerivedTangentFrame::gltf
                                  ? frame_gltf(tangent_normal, n, dp_dx, dp_dy, du_dx, dv_dx, du_dy, dv_dy)
                                  : frame_learnopengl(tangent_normal, n, dp_dx, dp_dy, dv_dx, dv_dy);
-        const Vec3 result = select(w != Batch(0.0f), frame_tangent(tangent_normal, n, stored, w), derived);
+        return select(w != Batch(0.0f), frame_tangent(tangent_normal, n, stored, w), derived);
+    };
+    // In place, so only the batch's own fragments are written: a run's normals
+    // are followed by the next run's, which whole vectors past the end
+    // overwrote with normals perturbed by this run's map (the next run, if
+    // textured too, then perturbed them twice), so that a pixel depended on
+    // where the tile's runs met, i.e. on the tile size. Inputs are read whole
+    // vectors past the end (the channels are padded).
+    std::size_t i = 0;
+    for (; i + Batch::size <= in.count; i += Batch::size) {
+        const Vec3 result = shading_normals(i);
         result.x.store_unaligned(in.normal[0] + i);
         result.y.store_unaligned(in.normal[1] + i);
         result.z.store_unaligned(in.normal[2] + i);
+    }
+    if (i < in.count) {
+        const Vec3 result = shading_normals(i);
+        alignas(64) float lanes[3][Batch::size];
+        result.x.store_aligned(lanes[0]), result.y.store_aligned(lanes[1]), result.z.store_aligned(lanes[2]);
+        for (int k = 0; k < 3; ++k) std::copy(lanes[k], lanes[k] + (in.count - i), in.normal[k] + i);
     }
 }
 

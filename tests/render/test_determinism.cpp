@@ -1,9 +1,13 @@
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "tessera/image_io.hpp"
 #include "render/isa_agreement.hpp"
+#include "simd/isa.hpp"
 #include "tessera/renderer.hpp"
 #include "test_paths.hpp"
 
@@ -29,6 +33,32 @@ TEST_CASE("the tile size changes the schedule, not the picture") {
     const RenderedImage reference = small.render(scene);
     Renderer large({.threads = 2, .tile_size = 64});
     CHECK(large.render(scene).radiance == reference.radiance);
+}
+
+// Every scene, with each ISA: where a tile's runs of materials meet moves with
+// the tile size, and textured runs once depended on it (the normal-map kernel
+// wrote past its run into the next one).
+TEST_CASE("the tile size changes no scene's picture, with any ISA") {
+    std::vector<std::filesystem::path> files = test::scene_files(test::source_dir() / "scenes");
+    if (std::filesystem::exists(test::assets_dir())) {
+        for (const auto& f : test::gltf_scene_files()) files.push_back(f);
+    } else {
+        MESSAGE("skipping scenes/gltf: " << test::assets_dir().string() << " is absent");
+    }
+    REQUIRE(!files.empty());
+    for (const auto& file : files) {
+        const Scene scene = load_scene_file(file);
+        for (const simd::Isa isa : {simd::Isa::scalar, simd::Isa::sse4, simd::Isa::avx2, simd::Isa::avx512}) {
+            if (!simd::isa_supported(isa)) continue;
+            const std::string name(simd::isa_name(isa));
+            CAPTURE(file.string());
+            CAPTURE(name);
+            Renderer small({.threads = 2, .tile_size = 16, .isa = name});
+            const RenderedImage reference = small.render(scene);
+            Renderer large({.threads = 2, .tile_size = 128, .isa = name});
+            CHECK(large.render(scene).radiance == reference.radiance);
+        }
+    }
 }
 
 TEST_CASE("every shading ISA renders the spheres scene within 1/255 of the scalar reference path") {

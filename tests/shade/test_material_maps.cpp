@@ -107,6 +107,12 @@ TEST_CASE("material kernels: SIMD matches the scalar reference") {
             for (int k = 0; k < 3; ++k)
                 for (std::size_t i = 0; i < kCount; ++i) worst = std::max(worst, std::abs(actual[k][i] - expected[k][i]));
             CHECK(worst <= 1e-5f);
+            // In place: the normals after the batch (the next run's, in a tile's
+            // fragment buffer) are left as they were.
+            bool untouched = true;
+            for (int k = 0; k < 3; ++k)
+                for (std::size_t i = kCount; i < padded; ++i) untouched = untouched && actual[k][i] == in[3 + k][i];
+            CHECK(untouched);
         }
     }
     // pow(c, 2.2) for the reference's albedo maps.
