@@ -20,6 +20,8 @@ static_assert(kMaxImageDimension + geometry::kGuardBandPixels <= 32768.0f);
 // Tiles are square; their side is a power of two in this range.
 inline constexpr int kMinTileSize = 8;
 inline constexpr int kMaxTileSize = 256;
-inline constexpr int kDefaultTileSize = 32;
+// The default (RenderSettings::tile_size): 64 measured 1.02-1.10x faster than
+// 32 over the race's rows on Zen 5 (README, "Tile size").
+inline constexpr int kDefaultTileSize = 64;
 
 }  // namespace tessera::raster

@@ -30,6 +30,7 @@ Scene small_spheres() {
 RenderSettings profiled(int threads) {
     RenderSettings settings;
     settings.threads = threads;
+    settings.tile_size = 32;  // 10 × 6 tiles, as the checks count them
     settings.profile = true;
     return settings;
 }

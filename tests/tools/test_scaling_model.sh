@@ -9,7 +9,7 @@ tessera="$2"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$tessera" bench "$src/scenes/spheres.toml" --width 320 --height 180 --threads 1 --frames 3 --warmup 0 \
-  --trace "$work/t.json" >/dev/null
+  --tile-size 32 --trace "$work/t.json" >/dev/null
 python3 "$src/tools/scaling_model.py" "$work/t.json" --cores 1,2,64 >"$work/model.txt"
 cat "$work/model.txt"
 python3 - "$work/model.txt" <<'PY'
