@@ -21,7 +21,8 @@ static_assert(kMaxImageDimension + geometry::kGuardBandPixels <= 32768.0f);
 inline constexpr int kMinTileSize = 8;
 inline constexpr int kMaxTileSize = 256;
 // The default (RenderSettings::tile_size): 64 measured 1.02-1.10x faster than
-// 32 over the race's rows on Zen 5 (README, "Tile size").
+// 32 over the race's rows on Zen 5 (README, "Tile size, output prefetch and
+// gather batches").
 inline constexpr int kDefaultTileSize = 64;
 
 }  // namespace tessera::raster
