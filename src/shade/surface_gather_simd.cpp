@@ -240,7 +240,49 @@ public:
                                                       entry_at(entry_of_fragment[i + 2]), entry_at(entry_of_fragment[i + 3])};
                 perspective_barycentrics4(t, lambda1 + i, lambda2 + i, &batch_b1[i - begin], &batch_b2[i - begin]);
             }
-            for (i = begin; i < fours_end; i += 4) {
+            i = begin;
+#if defined(__AVX512F__)
+            // Eight fragments at a time, two to a vector: lanes 0-7 hold
+            // fragment k's WorldPos and Normal, lanes 8-15 fragment k + 4's,
+            // each b1 and b2 permuted out of one vector rather than broadcast
+            // from memory; the same operations per lane as below.
+            for (; i + 8 <= fours_end; i += 8) {
+                const GatheredTriangle* t[8];
+                for (int k = 0; k < 8; ++k) t[k] = entry_at(entry_of_fragment[i + k]);
+                const float* const b1 = &batch_b1[i - begin];
+                const float* const b2 = &batch_b2[i - begin];
+                const __m512 b1s = _mm512_castps256_ps512(_mm256_load_ps(b1));
+                const __m512 b2s = _mm512_castps256_ps512(_mm256_load_ps(b2));
+                // A WorldPos and its Normal (8 floats from `field`) of t[k], then of t[k + 4].
+                const auto pair = [&](int k, Float4 GatheredTriangle::*field) {
+                    const auto at = [field](const GatheredTriangle* e) { return reinterpret_cast<const float*>(&(e->*field)); };
+                    return _mm512_insertf32x8(_mm512_castps256_ps512(_mm256_load_ps(at(t[k]))), _mm256_load_ps(at(t[k + 4])), 1);
+                };
+                __m512 point[4];
+                for (int k = 0; k < 4; ++k) {
+                    const __m512i pick = _mm512_inserti64x4(_mm512_set1_epi32(k), _mm256_set1_epi32(k + 4), 1);
+                    const __m512 corner0 = pair(k, &GatheredTriangle::world0), d1 = pair(k, &GatheredTriangle::world_d1),
+                                 d2 = pair(k, &GatheredTriangle::world_d2);
+                    point[k] = _mm512_add_ps(_mm512_add_ps(corner0, _mm512_mul_ps(_mm512_permutexvar_ps(pick, b1s), d1)),
+                                             _mm512_mul_ps(_mm512_permutexvar_ps(pick, b2s), d2));
+                }
+                // point[c]: component c of the WorldPos of fragments 0-3, of their Normals,
+                // of the WorldPos of 4-7, of their Normals; then the WorldPos quarters side by side.
+                simd::transpose4x4_quarters(point);
+                float* const world[3] = {world_x + i, world_y + i, world_z + i};
+                float* const normal[3] = {normal_x + i, normal_y + i, normal_z + i};
+                const __m512i quarters_0213 = _mm512_setr_epi32(0, 1, 2, 3, 8, 9, 10, 11, 4, 5, 6, 7, 12, 13, 14, 15);
+                for (int c = 0; c < 3; ++c) {
+                    const __m512 halves = _mm512_permutexvar_ps(quarters_0213, point[c]);
+                    _mm256_storeu_ps(world[c], _mm512_castps512_ps256(halves));
+                    _mm256_storeu_ps(normal[c], _mm512_extractf32x8_ps(halves, 1));
+                }
+                for (int k = 0; k < 8; ++k)
+                    if (t[k]->run_key != run_key) [[unlikely]]
+                        run_key = change_run_or_add_extras(i + k, *t[k], b1[k], b2[k]);
+            }
+#endif
+            for (; i < fours_end; i += 4) {
                 const GatheredTriangle* const t[4] = {entry_at(entry_of_fragment[i]), entry_at(entry_of_fragment[i + 1]),
                                                       entry_at(entry_of_fragment[i + 2]), entry_at(entry_of_fragment[i + 3])};
                 const float* const b1 = &batch_b1[i - begin];
