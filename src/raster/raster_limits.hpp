@@ -20,9 +20,6 @@ static_assert(kMaxImageDimension + geometry::kGuardBandPixels <= 32768.0f);
 // Tiles are square; their side is a power of two in this range.
 inline constexpr int kMinTileSize = 8;
 inline constexpr int kMaxTileSize = 256;
-// The default (RenderSettings::tile_size): 64 measured 1.02-1.10x faster than
-// 32 over the race's rows on Zen 5 (README, "Tile size, output prefetch and
-// gather batches").
-inline constexpr int kDefaultTileSize = 64;
+// The default is RenderSettings::tile_size.
 
 }  // namespace tessera::raster

@@ -272,8 +272,6 @@ struct Renderer::Frame {
     }
 };
 
-static_assert(RenderSettings{}.tile_size == raster::kDefaultTileSize);
-
 Renderer::Renderer(const RenderSettings& settings) {
     if (settings.threads < 0) throw std::invalid_argument("thread count must be >= 0");
     const int t = settings.tile_size;
