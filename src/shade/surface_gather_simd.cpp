@@ -256,11 +256,11 @@ public:
                 // A WorldPos and its Normal (8 floats from `field`) of t[k], then of t[k + 4].
                 const auto pair = [&](int k, Float4 GatheredTriangle::*field) {
                     const auto at = [field](const GatheredTriangle* e) { return reinterpret_cast<const float*>(&(e->*field)); };
-                    return _mm512_insertf32x8(_mm512_castps256_ps512(_mm256_load_ps(at(t[k]))), _mm256_load_ps(at(t[k + 4])), 1);
+                    return simd::join_halves(_mm256_load_ps(at(t[k])), _mm256_load_ps(at(t[k + 4])));
                 };
                 __m512 point[4];
                 for (int k = 0; k < 4; ++k) {
-                    const __m512i pick = _mm512_inserti64x4(_mm512_set1_epi32(k), _mm256_set1_epi32(k + 4), 1);
+                    const __m512i pick = simd::join_halves(_mm256_set1_epi32(k), _mm256_set1_epi32(k + 4));
                     const __m512 corner0 = pair(k, &GatheredTriangle::world0), d1 = pair(k, &GatheredTriangle::world_d1),
                                  d2 = pair(k, &GatheredTriangle::world_d2);
                     point[k] = _mm512_add_ps(_mm512_add_ps(corner0, _mm512_mul_ps(_mm512_permutexvar_ps(pick, b1s), d1)),

@@ -48,10 +48,10 @@ TEST_CASE("the tile size changes no scene's picture, with SIMD kernels") {
         MESSAGE("skipping scenes/gltf: " << test::assets_dir().string() << " is absent");
     }
     REQUIRE(!files.empty());
+    std::vector<simd::Isa> isas = {simd::Isa::sse4};
+    if (simd::best_supported_isa() != simd::Isa::sse4) isas.push_back(simd::best_supported_isa());
     for (const auto& file : files) {
         const Scene scene = load_scene_file(file);
-        std::vector<simd::Isa> isas = {simd::Isa::sse4};
-        if (simd::best_supported_isa() != simd::Isa::sse4) isas.push_back(simd::best_supported_isa());
         for (const simd::Isa isa : isas) {
             if (!simd::isa_supported(isa)) continue;
             const std::string name(simd::isa_name(isa));
