@@ -49,6 +49,8 @@ def machine_limits(path):
             continue
         name = row["name"].removesuffix("_median")  # machine/flops/avx2/real_time/threads:1
         parts = name.split("/")
+        if parts[1] not in ("flops", "memory"):
+            continue  # machine/handover/...: not a ceiling
         threads = int(parts[-1].split(":")[1])
         # A threaded run's rate is that of all its threads together (items summed over threads, per second).
         if parts[1] == "flops":

@@ -2,14 +2,22 @@
 // against (tools/stage_limits.py): the peak rate of independent multiply-adds
 // per ISA (no memory traffic, no dependency chains), and memory bandwidth
 // (streaming read, write and copy of buffers far larger than the caches), on
-// one thread and on two.
+// one thread and on two; and what it costs to write lines another core has
+// just read (machine/handover).
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include <immintrin.h>
+#include <pthread.h>
+#include <sched.h>
+
+#include <thread>
 
 #include <benchmark/benchmark.h>
 
@@ -119,6 +127,86 @@ void bench_memory(benchmark::State& state, Traffic traffic) {
     state.SetBytesProcessed(state.iterations() * bytes);
 }
 
+// A frame hands data from core to core: the vertex stage's output is read
+// by the tile pass on every core, and rewritten next frame. Here one 14 MB
+// buffer (the 720p spheres' shaded vertices) is read, then written and timed:
+// read on the writing core, or on the other core (the lines are then shared
+// with it, and each plain store waits for its copy to go), then written
+// plainly or non-temporally (simd/stream_store.hpp). Needs two CPUs; both
+// threads are pinned.
+constexpr std::size_t kHandoverBytes = std::size_t(14) << 20;
+enum class Handover { same_core, other_core, other_core_streamed };
+
+bool pin_to(int cpu) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(cpu, &set);
+    return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+}
+
+[[gnu::target("avx2")]] void write_buffer(std::uint64_t* out, std::size_t words, std::uint64_t value, bool streamed) {
+    const __m256i v = _mm256_set1_epi64x(std::int64_t(value));
+    for (std::size_t i = 0; i < words; i += 4) {
+        if (streamed) _mm256_stream_si256(reinterpret_cast<__m256i*>(out + i), v);
+        else _mm256_store_si256(reinterpret_cast<__m256i*>(out + i), v);
+    }
+    _mm_sfence();
+}
+
+std::uint64_t read_buffer(const std::uint64_t* in, std::size_t words) {
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < words; i += 8) sum += in[i];  // one word a line
+    return sum;
+}
+
+// bytes_per_second: the write's bytes over its time alone.
+void bench_handover(benchmark::State& state, Handover handover) {
+    cpu_set_t allowed;
+    std::vector<int> cpus;
+    if (sched_getaffinity(0, sizeof allowed, &allowed) == 0)
+        for (int cpu = 0; cpu < CPU_SETSIZE && cpus.size() < 2; ++cpu)
+            if (CPU_ISSET(cpu, &allowed)) cpus.push_back(cpu);
+    if (cpus.size() < 2) return state.SkipWithError("needs two CPUs");
+    cpu_set_t before;
+    pthread_getaffinity_np(pthread_self(), sizeof before, &before);
+    pin_to(cpus[0]);
+    const std::size_t words = kHandoverBytes / sizeof(std::uint64_t);
+    auto* buffer = static_cast<std::uint64_t*>(std::aligned_alloc(64, kHandoverBytes));
+    std::memset(buffer, 1, kHandoverBytes);
+    // The other core reads the buffer whenever `request` passes `served`.
+    std::atomic<std::uint64_t> request{0}, served{0};
+    std::atomic<bool> stop{false};
+    std::thread reader([&] {
+        pin_to(cpus[1]);
+        std::uint64_t done = 0, sink = 0;
+        while (!stop.load(std::memory_order_acquire)) {
+            if (request.load(std::memory_order_acquire) == done) continue;
+            sink += read_buffer(buffer, words);
+            served.store(++done, std::memory_order_release);
+        }
+        benchmark::DoNotOptimize(sink);
+    });
+    std::uint64_t round = 0, sink = 0;
+    for (auto _ : state) {
+        ++round;
+        if (handover == Handover::same_core) {
+            sink += read_buffer(buffer, words);
+        } else {
+            request.store(round, std::memory_order_release);
+            while (served.load(std::memory_order_acquire) != round) {}
+        }
+        const auto start = std::chrono::steady_clock::now();
+        write_buffer(buffer, words, round, handover == Handover::other_core_streamed);
+        state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    benchmark::DoNotOptimize(sink);
+    stop.store(true, std::memory_order_release);
+    reader.join();
+    std::free(buffer);
+    pthread_setaffinity_np(pthread_self(), sizeof before, &before);
+    state.SetBytesProcessed(state.iterations() * std::int64_t(kHandoverBytes));
+}
+
 [[maybe_unused]] const bool registered = [] {
     for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
         const std::string name = "machine/flops/" + std::string(simd::isa_name(isa));
@@ -132,6 +220,13 @@ void bench_memory(benchmark::State& state, Traffic traffic) {
             ->Threads(2)
             ->UseRealTime()
             ->Unit(benchmark::kMillisecond);
+    const std::pair<const char*, Handover> handovers[] = {{"same_core", Handover::same_core},
+                                                          {"other_core", Handover::other_core},
+                                                          {"other_core_streamed", Handover::other_core_streamed}};
+    for (const auto& [label, handover] : handovers)
+        benchmark::RegisterBenchmark(("machine/handover/" + std::string(label)).c_str(), bench_handover, handover)
+            ->UseManualTime()
+            ->Unit(benchmark::kMicrosecond);
     return true;
 }();
 
