@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "raster/raster_kernels.hpp"
+#include "simd/prefetch.hpp"
 
 namespace tessera::raster {
 
@@ -101,6 +102,7 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
     std::array<RasterTriangle, kSetupBatch> aside;  // a batch's records while the scalar code's are merged in
     std::array<std::uint32_t, 3 * kSetupBatch> tail;  // the last, partial batch, padded with index 0
     RasterTriangles& triangles = c.out.triangles;
+    std::size_t prefetched = 0;  // records before it were prefetched
     for (std::size_t first = 0; first < triangle_count; first += kSetupBatch) {
         in.count = int(std::min<std::size_t>(kSetupBatch, triangle_count - first));
         in.indices = c.indices.data() + 3 * first;
@@ -111,6 +113,12 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
         }
         // The kernel writes its records straight after the ones kept so far.
         const std::size_t kept_before = triangles.size();
+        // The records (a line each) of the next batches, asked for ahead of
+        // their stores (simd/prefetch.hpp): in a frame on several threads the
+        // other core read them last frame.
+        const std::size_t ahead_end = std::min(triangles.capacity(), kept_before + 2 * std::size_t(kSetupBatch));
+        for (prefetched = std::max(prefetched, kept_before + kSetupBatch); prefetched < ahead_end; ++prefetched)
+            simd::prefetch_for_write(triangles.data() + prefetched);
         triangles.resize(kept_before + kSetupBatch);  // uninitialized (UninitializedAllocator)
         batch.records = triangles.data() + kept_before;
         switch (isa) {
