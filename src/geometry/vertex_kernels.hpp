@@ -31,7 +31,6 @@ struct VertexRunOutput {
     float* vertices;
     std::uint32_t* outcodes;
     std::int32_t* screen;
-    bool stream_vertices;  // VertexRun::stream_vertices
 };
 
 #define TESSERA_DECLARE_VERTEX_KERNEL(suffix) \

@@ -59,7 +59,7 @@ void run_vertex_stage(simd::Isa isa, const Mesh& mesh, std::size_t first, const 
                             float(viewport.width),
                             float(viewport.height)};
     const VertexRunOutput kernel_out{reinterpret_cast<float*>(out.vertices.data()), out.outcodes,
-                                     reinterpret_cast<std::int32_t*>(out.screen), out.stream_vertices};
+                                     reinterpret_cast<std::int32_t*>(out.screen)};
     switch (isa) {
         case simd::Isa::sse4: return shade_vertex_run_sse4(in, kernel_out);
         case simd::Isa::avx2: return shade_vertex_run_avx2(in, kernel_out);

@@ -31,10 +31,6 @@ struct VertexRun {
     std::span<ShadedVertex> vertices;
     std::uint32_t* outcodes;
     ScreenVertex* screen;
-    // Store `vertices` non-temporally where the ISA's kernel can (AVX2,
-    // AVX-512): for frames on several threads, whose tile pass reads them on
-    // every core (simd/stream_store.hpp). Same values either way.
-    bool stream_vertices = false;
 };
 
 // The vertex stage for the mesh's vertices [first, first + out.vertices.size()):

@@ -8,7 +8,7 @@
 
 #include "simd/kernel_prelude.hpp"
 
-#include "simd/stream_store.hpp"
+#include "simd/prefetch.hpp"
 #include "simd/transpose.hpp"
 
 #include "geometry/clipper.hpp"
@@ -22,6 +22,8 @@ using Arch = TESSERA_SIMD_ARCH;
 using Float = xsimd::batch<float, Arch>;
 using Int = xsimd::batch<std::int32_t, Arch>;
 constexpr std::size_t kLanes = Float::size;
+// How far ahead of its stores the kernel prefetches its output, in vertices.
+constexpr std::size_t kAhead = 4 * kLanes;
 
 struct Vec4 {
     Float x, y, z, w;
@@ -72,14 +74,13 @@ void load_records8(const float* base, std::size_t stride, std::size_t first, __m
 // Vertices first .. first + 8 out, from one vector per word: the 12 words of
 // each ShadedVertex (clip xyzw, world xyz, normal xyz, uv) and its screen
 // words (x, y, depth bits, outcode).
-// `vertices`: where lane 0's ShadedVertex goes (the output or a staging buffer).
-void store_records8(const VertexRunOutput& out, std::size_t first, float* vertices, __m256 (&words)[8],
-                    __m256 (&tail)[4], __m256 (&screen)[4]) {
+void store_records8(const VertexRunOutput& out, std::size_t first, __m256 (&words)[8], __m256 (&tail)[4],
+                    __m256 (&screen)[4]) {
     simd::transpose8x8(words);
     simd::transpose4x4_halves(tail);
     simd::transpose4x4_halves(screen);
     for (std::size_t j = 0; j < 8; ++j) {
-        float* vertex = vertices + 12 * j;
+        float* vertex = out.vertices + 12 * (first + j);
         _mm256_storeu_ps(vertex, words[j]);
         const __m128 rest = j < 4 ? _mm256_castps256_ps128(tail[j]) : _mm256_extractf128_ps(tail[j - 4], 1);
         _mm_storeu_ps(vertex + 8, rest);
@@ -166,8 +167,18 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
         const Float depth = p.z * w_inv * half + half;
 #if defined(__AVX2__)
         if (n == kLanes) {  // whole records out, transposed 8 lanes at a time
-            alignas(64) float staged[12 * kLanes];  // where streamed: the vector's vertices, then stream_copy
-            float* const vertices = out.stream_vertices ? staged : out.vertices + 12 * first;
+            // The output lines of the vector kAhead vertices on, asked for
+            // exclusive now (simd/prefetch.hpp): a frame on several threads
+            // read them on every core last frame, and a store to a line the
+            // other core holds waits for that copy to go. Only lines of this run's
+            // vertices: the next run may be another thread's.
+            if (first + kAhead + kLanes <= in.count) {
+                const auto* vertices = reinterpret_cast<const char*>(out.vertices + 12 * (first + kAhead));
+                for (std::size_t b = 0; b < sizeof(float) * 12 * kLanes; b += 64) simd::prefetch_for_write(vertices + b);
+                const auto* screen = reinterpret_cast<const char*>(out.screen + 4 * (first + kAhead));
+                for (std::size_t b = 0; b < sizeof(std::int32_t) * 4 * kLanes; b += 64) simd::prefetch_for_write(screen + b);
+                simd::prefetch_for_write(out.outcodes + first + kAhead);
+            }
             for (std::size_t h = 0; h < kLanes / 8; ++h) {
                 __m256 words[8] = {half_of(p.x, h), half_of(p.y, h), half_of(p.z, h), half_of(p.w, h),
                                    half_of(wx, h),  half_of(wy, h),  half_of(wz, h),  half_of(nx, h)};
@@ -175,9 +186,8 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
                 __m256 screen[4] = {half_of(xsimd::bitwise_cast<Float>(screen_x), h),
                                     half_of(xsimd::bitwise_cast<Float>(screen_y), h), half_of(depth, h),
                                     half_of(xsimd::bitwise_cast<Float>(codes), h)};
-                store_records8(out, first + 8 * h, vertices + 96 * h, words, tail, screen);
+                store_records8(out, first + 8 * h, words, tail, screen);
             }
-            if (out.stream_vertices) simd::stream_copy(out.vertices + 12 * first, staged, sizeof staged);
             codes.store_unaligned(reinterpret_cast<std::int32_t*>(out.outcodes + first));
             continue;
         }
@@ -209,7 +219,6 @@ void shade_vertex_run(const VertexRunInput& in, const VertexRunOutput& out) {
 
 void TESSERA_SIMD_ENTRY(shade_vertex_run)(const VertexRunInput& in, const VertexRunOutput& out) {
     shade_vertex_run(in, out);
-    if (out.stream_vertices) simd::stream_fence();
 }
 
 }  // namespace tessera::geometry

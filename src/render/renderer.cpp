@@ -360,8 +360,6 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
         projection_matrix(scene.camera, scene.width, scene.height) * view_matrix(scene.camera);
     const geometry::GuardBand guard(scene.width, scene.height);
     const geometry::Viewport viewport{scene.width, scene.height};
-    // On several threads the tile pass reads the vertices on every core: stream them out (VertexRun).
-    const bool stream_vertices = arena.max_concurrency() > 1;
     // In runs of vertices, so that one large mesh spreads over every thread too.
     constexpr std::size_t kRun = 4096;
     tbb::parallel_for(std::size_t(0), scene.objects.size(), [&](std::size_t o) {
@@ -372,8 +370,7 @@ void Renderer::Frame::run_vertex_stage(const Scene& scene) {
             const std::size_t base = first_vertex[o] + first;
             // The viewport transform too, once per vertex rather than once per triangle corner.
             geometry::run_vertex_stage(isa, mesh, first, object.model, view_projection, guard, viewport,
-                                       {{vertices.data() + base, count}, outcodes.data() + base, screen.data() + base,
-                                        stream_vertices});
+                                       {{vertices.data() + base, count}, outcodes.data() + base, screen.data() + base});
             if (!mesh.tangents.empty())
                 geometry::transform_tangents(mesh, first, object.model, {tangents.data() + base, count});
         });
