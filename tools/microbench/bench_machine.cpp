@@ -132,7 +132,7 @@ void bench_memory(benchmark::State& state, Traffic traffic) {
 // buffer (the 720p spheres' shaded vertices) is read, then written and timed:
 // read on the writing core, or on the other core (the lines are then shared
 // with it, and each plain store waits for its copy to go), then written
-// plainly or non-temporally (simd/stream_store.hpp). Needs two CPUs; both
+// plainly or non-temporally. Needs two CPUs; both
 // threads are pinned.
 constexpr std::size_t kHandoverBytes = std::size_t(14) << 20;
 enum class Handover { same_core, other_core, other_core_streamed };
