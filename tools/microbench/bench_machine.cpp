@@ -22,6 +22,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_common.hpp"
+#include "simd/prefetch.hpp"
 
 namespace tessera::microbench {
 namespace {
@@ -132,10 +133,11 @@ void bench_memory(benchmark::State& state, Traffic traffic) {
 // buffer (the 720p spheres' shaded vertices) is read, then written and timed:
 // read on the writing core, or on the other core (the lines are then shared
 // with it, and each plain store waits for its copy to go), then written
-// plainly or non-temporally. Needs two CPUs; both
-// threads are pinned.
+// plainly, plainly after a prefetchw 4 KiB ahead (simd/prefetch.hpp, what the
+// frame's stages do), or non-temporally. Needs two CPUs; both threads are pinned.
 constexpr std::size_t kHandoverBytes = std::size_t(14) << 20;
-enum class Handover { same_core, other_core, other_core_streamed };
+enum class Handover { same_core, other_core, other_core_prefetched, other_core_streamed };
+enum class Store { plain, prefetched, streamed };
 
 bool pin_to(int cpu) {
     cpu_set_t set;
@@ -144,11 +146,17 @@ bool pin_to(int cpu) {
     return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
 }
 
-[[gnu::target("avx2")]] void write_buffer(std::uint64_t* out, std::size_t words, std::uint64_t value, bool streamed) {
+[[gnu::target("avx2")]] void write_buffer(std::uint64_t* out, std::size_t words, std::uint64_t value, Store store) {
     const __m256i v = _mm256_set1_epi64x(std::int64_t(value));
+    constexpr std::size_t kAheadWords = 4096 / sizeof(std::uint64_t);
     for (std::size_t i = 0; i < words; i += 4) {
-        if (streamed) _mm256_stream_si256(reinterpret_cast<__m256i*>(out + i), v);
-        else _mm256_store_si256(reinterpret_cast<__m256i*>(out + i), v);
+        if (store == Store::streamed) {
+            _mm256_stream_si256(reinterpret_cast<__m256i*>(out + i), v);
+            continue;
+        }
+        if (store == Store::prefetched && i % 8 == 0 && i + kAheadWords < words)
+            simd::prefetch_for_write(out + i + kAheadWords);
+        _mm256_store_si256(reinterpret_cast<__m256i*>(out + i), v);
     }
     _mm_sfence();
 }
@@ -196,7 +204,10 @@ void bench_handover(benchmark::State& state, Handover handover) {
             while (served.load(std::memory_order_acquire) != round) {}
         }
         const auto start = std::chrono::steady_clock::now();
-        write_buffer(buffer, words, round, handover == Handover::other_core_streamed);
+        write_buffer(buffer, words, round,
+                     handover == Handover::other_core_streamed     ? Store::streamed
+                     : handover == Handover::other_core_prefetched ? Store::prefetched
+                                                                   : Store::plain);
         state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     benchmark::DoNotOptimize(sink);
@@ -222,6 +233,7 @@ void bench_handover(benchmark::State& state, Handover handover) {
             ->Unit(benchmark::kMillisecond);
     const std::pair<const char*, Handover> handovers[] = {{"same_core", Handover::same_core},
                                                           {"other_core", Handover::other_core},
+                                                          {"other_core_prefetched", Handover::other_core_prefetched},
                                                           {"other_core_streamed", Handover::other_core_streamed}};
     for (const auto& [label, handover] : handovers)
         benchmark::RegisterBenchmark(("machine/handover/" + std::string(label)).c_str(), bench_handover, handover)
