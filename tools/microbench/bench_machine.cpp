@@ -136,14 +136,17 @@ void bench_memory(benchmark::State& state, Traffic traffic) {
 // plainly, plainly after a prefetchw 4 KiB ahead (simd/prefetch.hpp, what the
 // frame's stages do), or non-temporally. Needs two CPUs; both threads are pinned.
 constexpr std::size_t kHandoverBytes = std::size_t(14) << 20;
-enum class Handover { same_core, other_core, other_core_prefetched, other_core_streamed };
 enum class Store { plain, prefetched, streamed };
+struct Handover {
+    bool other_core;  // the buffer is read on the other core before it is written
+    Store store;
+};
 
-bool pin_to(int cpu) {
+void pin_to(int cpu) {
     cpu_set_t set;
     CPU_ZERO(&set);
     CPU_SET(cpu, &set);
-    return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+    pthread_setaffinity_np(pthread_self(), sizeof set, &set);
 }
 
 [[gnu::target("avx2")]] void write_buffer(std::uint64_t* out, std::size_t words, std::uint64_t value, Store store) {
@@ -197,17 +200,14 @@ void bench_handover(benchmark::State& state, Handover handover) {
     std::uint64_t round = 0, sink = 0;
     for (auto _ : state) {
         ++round;
-        if (handover == Handover::same_core) {
+        if (!handover.other_core) {
             sink += read_buffer(buffer, words);
         } else {
             request.store(round, std::memory_order_release);
             while (served.load(std::memory_order_acquire) != round) {}
         }
         const auto start = std::chrono::steady_clock::now();
-        write_buffer(buffer, words, round,
-                     handover == Handover::other_core_streamed     ? Store::streamed
-                     : handover == Handover::other_core_prefetched ? Store::prefetched
-                                                                   : Store::plain);
+        write_buffer(buffer, words, round, handover.store);
         state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     benchmark::DoNotOptimize(sink);
@@ -231,10 +231,10 @@ void bench_handover(benchmark::State& state, Handover handover) {
             ->Threads(2)
             ->UseRealTime()
             ->Unit(benchmark::kMillisecond);
-    const std::pair<const char*, Handover> handovers[] = {{"same_core", Handover::same_core},
-                                                          {"other_core", Handover::other_core},
-                                                          {"other_core_prefetched", Handover::other_core_prefetched},
-                                                          {"other_core_streamed", Handover::other_core_streamed}};
+    const std::pair<const char*, Handover> handovers[] = {{"same_core", {false, Store::plain}},
+                                                          {"other_core", {true, Store::plain}},
+                                                          {"other_core_prefetched", {true, Store::prefetched}},
+                                                          {"other_core_streamed", {true, Store::streamed}}};
     for (const auto& [label, handover] : handovers)
         benchmark::RegisterBenchmark(("machine/handover/" + std::string(label)).c_str(), bench_handover, handover)
             ->UseManualTime()
