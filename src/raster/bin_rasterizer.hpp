@@ -37,8 +37,10 @@ struct CornerPrefetch {
 };
 
 // Rasterizes the triangles records[bin[i]] (ids id_base | bin[i]) into the
-// tile in bin order, exactly as rasterize_triangle(isa, ...) of each in turn
-// (bit-identical buffers and counters for every ISA, scalar included).
+// tile in bin order: appends their ids to buffers.triangles and draws each
+// as its position there, exactly as rasterize_triangle(isa, ...) of each in
+// turn with that position as its id (bit-identical buffers and counters for
+// every ISA, scalar included).
 // `counters` are brought up to date when the call returns (the kernels count
 // in registers), not at each `drawn` call.
 void rasterize_bin(simd::Isa isa, const RasterTriangle* records, std::span<const std::uint32_t> bin,
@@ -60,9 +62,11 @@ void rasterize_bin(simd::Isa isa, const RasterTriangle* records, std::span<const
     }
 }
 
+// The kernels: ids[i] = id_base | bin[i], and triangle i drawn as first_id + i.
 #define TESSERA_DECLARE_BIN_KERNEL(suffix) \
     void rasterize_bin_##suffix(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count, \
-                                std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers, \
+                                std::uint32_t id_base, std::uint32_t* ids, std::uint32_t first_id, \
+                                const TileRect& tile, TileBuffers& buffers, \
                                 const TileView& view, RasterCounters& counters, DrawnCallback drawn, \
                                 const CornerPrefetch& prefetch);
 TESSERA_DECLARE_BIN_KERNEL(sse4)

@@ -18,6 +18,7 @@ void TileBuffers::reset(int tile_side) {
     triangle.resize(n);
     lambda1.resize(n);
     lambda2.resize(n);
+    triangles.count = 0;
 }
 
 namespace {

@@ -5,6 +5,7 @@
 // forward shading with a LESS depth test and no blending would give.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -28,12 +29,30 @@ struct TileRect {
 struct TileBuffers {
     int side = 0;
     std::vector<float> depth;               // window depth of the nearest fragment, 1 = cleared
-    std::vector<std::uint32_t> triangle;    // its triangle id, where covered
+    std::vector<std::uint32_t> triangle;    // its triangle id (as the rasterizer was given it), where covered
     std::vector<float> lambda1, lambda2;    // its screen-space barycentrics of corners 1 and 2, where covered
+    // The tile's triangles in the order they were drawn, each once, for its
+    // gather (shade/surface_gather.hpp): ids[p] for p < count. The renderer
+    // draws the triangle at position p as id p, so that the gather finds a
+    // pixel's triangle without a hash table.
+    struct TriangleList {
+        std::vector<std::uint32_t> ids;  // grown, never shrunk: no allocation per tile
+        std::uint32_t count = 0;
+        // Room for n more ids, from ids[count] on (count is not advanced).
+        std::uint32_t* room_for(std::size_t n) {
+            if (count + n > ids.size()) ids.resize(std::max(2 * ids.size(), count + n));
+            return ids.data() + count;
+        }
+        // Appends `id`; returns its position, the id to draw it as.
+        std::uint32_t add(std::uint32_t id) {
+            *room_for(1) = id;
+            return count++;
+        }
+    } triangles;
     // A fragment passes LESS only with depth < 1, the cleared value, so depth
     // alone says whether a pixel is covered and the other arrays need no clearing.
     bool covered(std::size_t pixel) const { return depth[pixel] < 1.0f; }
-    void reset(int tile_side);              // clears depth to 1
+    void reset(int tile_side);              // clears depth to 1 and empties `triangles`
 };
 
 // Counts of work done, summed over tiles.

@@ -370,7 +370,8 @@ void TESSERA_SIMD_ENTRY(rasterize_triangle)(const RasterTriangle& t, std::uint32
 }
 
 void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std::uint32_t* bin, std::size_t count,
-                                       std::uint32_t id_base, const TileRect& tile, TileBuffers& buffers,
+                                       std::uint32_t id_base, std::uint32_t* ids, std::uint32_t first_id,
+                                       const TileRect& tile, TileBuffers& buffers,
                                        const TileView& view, RasterCounters& counters, DrawnCallback drawn,
                                        const CornerPrefetch& prefetch) {
     // Copies the compiler may keep in registers: the vector stores into the
@@ -386,8 +387,9 @@ void TESSERA_SIMD_ENTRY(rasterize_bin)(const RasterTriangle* records, const std:
         constexpr std::size_t kPrefetchDistance = 8;
         if (i + kPrefetchDistance < count) __builtin_prefetch(&records[bin[i + kPrefetchDistance]]);
         const RasterTriangle& t = records[bin[i]];
+        ids[i] = id_base | bin[i];
         const std::uint64_t passed = local_counters.depth_passed;
-        rasterize_one(t, id_base | bin[i], local_tile, buffers, local_view, local_counters);
+        rasterize_one(t, first_id + std::uint32_t(i), local_tile, buffers, local_view, local_counters);
         if (local_counters.depth_passed != passed) {
             if (local_prefetch.vertices) prefetch_corners(t, local_prefetch);
             if (drawn.call) drawn.call(drawn.context, bin[i]);

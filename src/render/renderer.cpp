@@ -560,12 +560,15 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
     const raster::TileRect rect = grid.rect(tile);
     image::prefetch_tile_output(rect, image);
     const auto t0 = Clock::now();
+    // A triangle is drawn as its position in the tile's list (TileBuffers::triangles).
     const bool drawn = rasterize_bins(tile, s, [&] { s.raster.reset(grid.tile_size); },
                                       [&](const raster::RasterTriangle& t, std::uint32_t id, bool alpha_tested) {
+                                          const std::uint32_t position = s.raster.triangles.add(id);
                                           if (!alpha_tested)
-                                              return raster::rasterize_triangle(isa, t, id, rect, s.raster, s.counters);
+                                              return raster::rasterize_triangle(isa, t, position, rect, s.raster,
+                                                                                s.counters);
                                           const shade::AlphaMaskTriangle mask{corners_of(scene, id), scene.textures};
-                                          raster::rasterize_triangle(t, id, rect, s.raster, s.counters,
+                                          raster::rasterize_triangle(t, position, rect, s.raster, s.counters,
                                                                      {shade::alpha_mask_keep, &mask});
                                       },
                                       [&](const render::Chunk& chunk, std::span<const std::uint32_t> bin,

@@ -81,6 +81,10 @@ struct TriangleTable {
     static constexpr std::size_t kPackSlack = 16;
     std::vector<std::uint32_t> pixels, ids;
     std::vector<float> lambda1, lambda2;
+    // Per position in a tile's triangle list (raster::TileBuffers::triangles), grown
+    // to the longest list met: whether a fragment shows it (0 between tiles), its entry.
+    std::vector<std::uint8_t> shown;
+    std::vector<std::uint32_t> entry_of_position;
 
     void reserve(std::size_t max_fragments) {
         entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
@@ -155,7 +159,8 @@ private:
 
 // Gathers the covered pixels of a width × height tile, row by row, into `out`,
 // records the runs of fragments that share a material, and returns the
-// fragment count. lookup(triangle_id) gives TriangleCorners. Neighbouring
+// fragment count. A pixel's triangle id is tile.triangles.ids[tile.triangle[pixel]];
+// lookup(triangle_id) gives TriangleCorners. Neighbouring
 // pixels mostly show the same triangle, so its corners are fetched once per
 // run of pixels.
 //
@@ -300,7 +305,7 @@ std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, in
         const std::size_t row = std::size_t(y) * tile.side;
         for (int x = 0; x < width; ++x) {
             if (!tile.covered(row + x)) continue;
-            gather.add(x, y, tile.triangle[row + x], tile.lambda1[row + x], tile.lambda2[row + x]);
+            gather.add(x, y, tile.triangles.ids[tile.triangle[row + x]], tile.lambda1[row + x], tile.lambda2[row + x]);
         }
     }
     return gather.finish();

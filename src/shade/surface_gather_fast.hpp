@@ -19,11 +19,17 @@
 //    FragmentBuffer::fill_plain_runs fills them where channels are read;
 //  - a tile's covered pixels, their triangle ids and λ1 λ2 are packed into
 //    lists without a branch per pixel (4 or, with AVX2, 8 pixels per compare);
-//  - the table is probed for a batch of fragments without a branch, then the
-//    batch's new triangles are set up, then its fragments gathered: the
-//    probe's miss (once per triangle of the tile) is no mispredicted branch;
-//    only the first of a row of fragments of one triangle probes, so that a
-//    probe seldom waits for the store of the one before;
+//  - a one-sample tile's pixels hold positions in the tile's triangle list
+//    (raster::TileBuffers::triangles): the positions its fragments show are
+//    marked, numbered in the list's order (their entries) and set up, all
+//    without a branch per fragment or a hash table;
+//  - a fragment list (4× MSAA, blending) holds triangle ids: a hash table is
+//    probed for a batch of fragments without a branch, then the batch's new
+//    triangles are set up, then its fragments gathered: the probe's miss
+//    (once per triangle of the tile) is no mispredicted branch;
+//  - either way only the first of a row of fragments of one triangle (its
+//    head) looks its entry up, so that a probe seldom waits for the store of
+//    the one before;
 //  - the perspective barycentrics of 4 (AVX2: 8) fragments as one vector;
 //    WorldPos and Normal as 4-float vectors (AVX2: both in one 8-float
 //    vector) transposed into the channels; the same IEEE operations per lane

@@ -186,11 +186,24 @@ public:
         : lookup_(lookup), out_(out), runs_(runs), table_(out.triangle_table()), lambda1_(lambda1),
           lambda2_(lambda2), xy_of_(xy_of) {
         runs_.clear();
-        table_.start_tile();
     }
 
     // Gathers fragments k < count: fragment k is triangle ids[k], at screen-space λ1 λ2 lambda1[k], lambda2[k].
     std::size_t gather(std::size_t count, const std::uint32_t* ids) {
+        table_.start_tile();
+        return gather_fragments(count, ids, false);
+    }
+    // The same where ids[k] is a position in the tile's triangle list `triangles` (n long).
+    std::size_t gather_positions(std::size_t count, const std::uint32_t* ids, const std::uint32_t* triangles,
+                                 std::size_t n) {
+        const std::size_t entries = index_positions(table_, ids, count, triangles, n);
+        for (std::size_t e = 0; e < entries; ++e) set_up(e, table_.new_id[e]);
+        return gather_fragments(count, ids, true);
+    }
+
+private:
+    // indexed: every fragment has its entry (index_positions), and every entry is set up.
+    std::size_t gather_fragments(std::size_t count, const std::uint32_t* ids, bool indexed) {
         using C = FragmentBuffer;
         float* const world_x = out_.channel(C::world_x);
         float* const world_y = out_.channel(C::world_y);
@@ -216,9 +229,12 @@ public:
         // by slot, so a later triangle in the same slot does not overwrite it.
         std::size_t entry_count = 0;
         for (std::size_t begin = 0; begin < count; begin += kBatch) {
-            const std::size_t end = std::min(count, begin + kBatch), first_new = entry_count;
-            entry_count = probe(table_, ids, begin, end, entry_count);
-            for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
+            const std::size_t end = std::min(count, begin + kBatch);
+            if (!indexed) {
+                const std::size_t first_new = entry_count;
+                entry_count = probe(table_, ids, begin, end, entry_count);
+                for (std::size_t e = first_new; e < entry_count; ++e) set_up(e, new_ids[e]);
+            }
             // First the batch's barycentrics as vectors (the reference's
             // operations lane by lane), in a loop of their own so that the
             // divisions of several vectors overlap; then, four fragments at a
@@ -335,7 +351,6 @@ public:
         return count;
     }
 
-private:
     // Which of fragments [begin, end) meet a triangle the table lacks: each gets
     // its triangle's entry (in bytes: entry_of_fragment), new triangles a new
     // one, listed in new_id. Returns the new entry count. Out of line, so that
@@ -350,13 +365,81 @@ private:
                                                std::size_t end, std::size_t entry_count) {
         constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
         TriangleTable::Slot* const slots = table.slots.data();
-        std::uint32_t* const entry_of_fragment = table.entry_of_fragment.data();
         std::uint32_t* const new_ids = table.new_id.data();
-        std::uint32_t* const head_of_fragment = table.head_of_fragment.data();
-        std::uint32_t* const head_id = table.head_id.data();
+        const std::uint32_t* const head_id = table.head_id.data();
         std::uint32_t* const head_slot = table.head_slot.data();
         std::uint32_t* const head_entry = table.head_entry.data();
-        // The heads, without a branch.
+        const std::size_t heads = find_heads(table, ids, begin, end);
+        std::size_t h = 0;
+#if defined(__AVX2__)
+        // Their table slots, 8 at a time (TriangleTable::slot).
+        for (; h + 8 <= heads; h += 8) {
+            const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_id + h));
+            const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(head_slot + h),
+                                _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
+        }
+#endif
+        for (; h < heads; ++h) head_slot[h] = std::uint32_t(TriangleTable::slot(head_id[h]));
+        for (h = 0; h < heads; ++h) {
+            const std::uint32_t id = head_id[h];
+            TriangleTable::Slot& slot = slots[head_slot[h]];
+            new_ids[entry_count] = id;  // kept where new
+            // entry = slot.triangle != id ? the next entry : slot.entry, without
+            // a branch (which would mispredict once per triangle): g++ makes a
+            // branch of every C++ form of this select, hence the asm.
+            std::uint32_t entry = slot.entry;
+            bool is_new;
+            asm("cmpl %[id], %[triangle]\n\tcmovne %[next], %[entry]"
+                : [entry] "+r"(entry), "=@ccne"(is_new)
+                : [id] "r"(id), [triangle] "m"(slot.triangle), [next] "r"(std::uint32_t(entry_count) * kEntryBytes));
+            slot.triangle = id, slot.entry = entry;
+            head_entry[h] = entry;
+            entry_count += std::size_t(is_new);
+        }
+        spread_head_entries(table, begin, end);
+        return entry_count;
+    }
+
+    // A tile whose fragments' ids are positions in its triangle list
+    // (`triangles`, n long; raster::TileBuffers::triangles): every position a fragment
+    // shows gets an entry, in the list's order, and each fragment its entry,
+    // with no table to probe. One pass marks the positions the heads show,
+    // one numbers them (listing their triangles in new_id), one gives each
+    // head its entry: no load waits for a store just made, as a probe's of a
+    // slot the probe before wrote does. Returns the entry count.
+    [[gnu::noinline]] static std::size_t index_positions(TriangleTable& table, const std::uint32_t* ids,
+                                                         std::size_t count, const std::uint32_t* triangles,
+                                                         std::size_t n) {
+        constexpr std::uint32_t kEntryBytes = sizeof(GatheredTriangle);
+        if (count == 0) return 0;
+        if (table.shown.size() < n) table.shown.resize(n), table.entry_of_position.resize(n);  // grows, not per tile
+        std::uint8_t* const shown = table.shown.data();  // all 0 between tiles
+        std::uint32_t* const entry_of_position = table.entry_of_position.data();
+        std::uint32_t* const new_ids = table.new_id.data();
+        const std::uint32_t* const head_id = table.head_id.data();
+        std::uint32_t* const head_entry = table.head_entry.data();
+        const std::size_t heads = find_heads(table, ids, 0, count);
+        for (std::size_t h = 0; h < heads; ++h) shown[head_id[h]] = 1;
+        std::uint32_t entries = 0;
+        for (std::size_t p = 0; p < n; ++p) {
+            entry_of_position[p] = entries * kEntryBytes;
+            new_ids[entries] = triangles[p];  // kept where shown (new_id has a spare element)
+            entries += shown[p];
+            shown[p] = 0;
+        }
+        for (std::size_t h = 0; h < heads; ++h) head_entry[h] = entry_of_position[head_id[h]];
+        spread_head_entries(table, 0, count);
+        return entries;
+    }
+
+    // The heads of fragments [begin, end) (the first of each run of fragments
+    // of one triangle): their ids in head_id, and for each fragment its head's
+    // index in head_of_fragment. Returns the head count.
+    static std::size_t find_heads(TriangleTable& table, const std::uint32_t* ids, std::size_t begin, std::size_t end) {
+        std::uint32_t* const head_of_fragment = table.head_of_fragment.data();
+        std::uint32_t* const head_id = table.head_id.data();
+        // Without a branch.
         std::size_t heads = 0, i = begin;
         std::uint32_t previous = ~ids[begin];
 #if defined(__AVX2__)
@@ -387,34 +470,15 @@ private:
             head_of_fragment[i] = std::uint32_t(heads - 1);
             previous = id;
         }
-        std::size_t h = 0;
-#if defined(__AVX2__)
-        // Their table slots, 8 at a time (TriangleTable::slot).
-        for (; h + 8 <= heads; h += 8) {
-            const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(head_id + h));
-            const __m256i hash = _mm256_xor_si256(_mm256_xor_si256(id, _mm256_srli_epi32(id, 11)), _mm256_srli_epi32(id, 17));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(head_slot + h),
-                                _mm256_and_si256(hash, _mm256_set1_epi32(int(TriangleTable::kSize - 1))));
-        }
-#endif
-        for (; h < heads; ++h) head_slot[h] = std::uint32_t(TriangleTable::slot(head_id[h]));
-        for (h = 0; h < heads; ++h) {
-            const std::uint32_t id = head_id[h];
-            TriangleTable::Slot& slot = slots[head_slot[h]];
-            new_ids[entry_count] = id;  // kept where new
-            // entry = slot.triangle != id ? the next entry : slot.entry, without
-            // a branch (which would mispredict once per triangle): g++ makes a
-            // branch of every C++ form of this select, hence the asm.
-            std::uint32_t entry = slot.entry;
-            bool is_new;
-            asm("cmpl %[id], %[triangle]\n\tcmovne %[next], %[entry]"
-                : [entry] "+r"(entry), "=@ccne"(is_new)
-                : [id] "r"(id), [triangle] "m"(slot.triangle), [next] "r"(std::uint32_t(entry_count) * kEntryBytes));
-            slot.triangle = id, slot.entry = entry;
-            head_entry[h] = entry;
-            entry_count += std::size_t(is_new);
-        }
-        i = begin;
+        return heads;
+    }
+
+    // Each of fragments [begin, end) gets its head's entry (head_entry) in entry_of_fragment.
+    static void spread_head_entries(TriangleTable& table, std::size_t begin, std::size_t end) {
+        std::uint32_t* const entry_of_fragment = table.entry_of_fragment.data();
+        const std::uint32_t* const head_of_fragment = table.head_of_fragment.data();
+        const std::uint32_t* const head_entry = table.head_entry.data();
+        std::size_t i = begin;
 #if defined(__AVX2__)
         // Eight fragments' heads are at most eight consecutive ones (each
         // fragment's is its predecessor's or the next): one load from the
@@ -429,7 +493,6 @@ private:
         }
 #endif
         for (; i < end; ++i) entry_of_fragment[i] = head_entry[head_of_fragment[i]];
-        return entry_count;
     }
 
     // Sets up triangle `id` in table entry `entry`, as SurfaceGather::add sets up
@@ -535,7 +598,7 @@ std::size_t TESSERA_SIMD_ENTRY(gather_tile)(const raster::TileBuffers& tile, int
         return std::pair<int, int>(int(pixels[i]) % side, int(pixels[i]) / side);
     };
     FastSurfaceGather gather(lookup, out, runs, table.lambda1.data(), table.lambda2.data(), xy_of);
-    return gather.gather(count, table.ids.data());
+    return gather.gather_positions(count, table.ids.data(), tile.triangles.ids.data(), tile.triangles.count);
 }
 
 std::size_t TESSERA_SIMD_ENTRY(gather_fragment_list)(const raster::TileFragments& fragments,

@@ -5,6 +5,7 @@
 // textured, vertex-coloured and blended materials, corners clipping made, and
 // triangle ids that collide in the table; the full TriangleCorners asked for
 // beyond-plain triangles only.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -233,6 +235,14 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
         CAPTURE(trial);
         raster::TileBuffers tile;
         tile.reset(kSide);
+        // The tile's triangle list (pixels hold positions in it): every
+        // triangle once, in a shuffled order, or a few of them.
+        std::vector<std::uint32_t> listed(scene.triangles.size());
+        for (std::uint32_t i = 0; i < listed.size(); ++i) listed[i] = RandomScene::id_of(i);
+        std::shuffle(listed.begin(), listed.end(), rng);
+        if (trial % 4 == 3) listed.resize(40);
+        std::unordered_map<std::uint32_t, std::uint32_t> position;
+        for (const std::uint32_t id : listed) position[id] = tile.triangles.add(id);
         // Partial tiles at the image's edge, empty and full tiles, long and short runs.
         const int width = trial % 5 == 0 ? 1 + trial % kSide : kSide, height = trial % 7 == 0 ? 3 : kSide;
         const float coverage = trial == 0 ? 0.0f : trial == 1 ? 1.0f : std::uniform_real_distribution<float>(0.2f, 1.0f)(rng);
@@ -240,9 +250,12 @@ TEST_CASE("the fast gather of a tile equals the reference gather bit for bit") {
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
                 if (std::uniform_real_distribution<float>(0.0f, 1.0f)(rng) >= coverage) continue;
+                std::uint32_t id = ids.next();
+                if (!position.contains(id)) ids.last = id = listed[id % listed.size()];  // a listed one, repeated as well
                 const std::size_t pixel = std::size_t(y) * kSide + x;
                 const auto [l1, l2] = random_lambdas(rng);
-                tile.depth[pixel] = 0.5f, tile.triangle[pixel] = ids.next(), tile.lambda1[pixel] = l1, tile.lambda2[pixel] = l2;
+                tile.depth[pixel] = 0.5f, tile.triangle[pixel] = position[id], tile.lambda1[pixel] = l1,
+                tile.lambda2[pixel] = l2;
             }
         fill_unwritten(reference);
         const std::size_t count = gather_surface_points(Isa::scalar, tile, width, height, lookup,

@@ -46,6 +46,7 @@ struct GatherInputs {
         }
         chunk = {triangles.data(), nullptr, &material, false};
         tile.reset(kSide);
+        for (std::uint32_t id = 0; id < triangles.size(); ++id) tile.triangles.add(id);  // position = id
         for (int y = 0; y < kSide; ++y)
             for (int x = 0; x < kSide; ++x) {
                 const int pixel = y * kSide + x;
