@@ -71,7 +71,7 @@ struct TriangleTable {
     // Per set-up of a gather (at most one per fragment):
     std::vector<GatheredTriangle> entry;
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
-    std::vector<std::uint32_t> new_id;  // the triangle
+    std::vector<std::uint32_t> new_id;  // the triangle (kPackSlack spare)
     std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as Slot::entry)
     // Per fragment of a batch: the first fragment of each row of fragments of one triangle (a head).
     std::vector<std::uint32_t> head_of_fragment;  // its head's index among the batch's heads
@@ -87,7 +87,7 @@ struct TriangleTable {
     std::vector<std::uint32_t> entry_of_position;
 
     void reserve(std::size_t max_fragments) {
-        entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + 1);
+        entry.resize(max_fragments), extras.resize(max_fragments), new_id.resize(max_fragments + kPackSlack);
         entry_of_fragment.resize(max_fragments + kPackSlack), head_of_fragment.resize(max_fragments + kPackSlack);
         for (auto* v : {&head_id, &head_slot, &head_entry}) v->resize(max_fragments + kPackSlack);
         for (auto* v : {&pixels, &ids}) v->resize(max_fragments + kPackSlack);

@@ -422,7 +422,30 @@ private:
         const std::size_t heads = find_heads(table, ids, 0, count);
         for (std::size_t h = 0; h < heads; ++h) shown[head_id[h]] = 1;
         std::uint32_t entries = 0;
-        for (std::size_t p = 0; p < n; ++p) {
+        std::size_t p = 0;
+#if defined(__AVX2__)
+        static_assert(kEntryBytes == 1u << 7, "an entry's offset is its index << 7");
+        // Eight positions at a time: their shown bytes (0 or 1) as a mask, the
+        // shown ones' triangles packed to the front (new_id has kPackSlack
+        // spare lanes), their entries from the counts up to each (the lanes
+        // not shown get values no fragment reads).
+        for (; p + 8 <= n; p += 8) {
+            std::uint64_t bytes;
+            std::memcpy(&bytes, shown + p, sizeof bytes);
+            std::memset(shown + p, 0, sizeof bytes);
+            const unsigned mask = unsigned(_pext_u64(bytes, 0x0101010101010101u));
+            const __m256i counts =
+                _mm256_load_si256(reinterpret_cast<const __m256i*>(kInclusiveCounts8Aligned[mask].data()));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(entry_of_position + p),
+                                _mm256_slli_epi32(_mm256_add_epi32(counts, _mm256_set1_epi32(int(entries) - 1)), 7));
+            const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kPackLanes8Aligned[mask].data()));
+            _mm256_storeu_si256(
+                reinterpret_cast<__m256i*>(new_ids + entries),
+                _mm256_permutevar8x32_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(triangles + p)), lanes));
+            entries += std::uint32_t(__builtin_popcount(mask));
+        }
+#endif
+        for (; p < n; ++p) {
             entry_of_position[p] = entries * kEntryBytes;
             new_ids[entries] = triangles[p];  // kept where shown (new_id has a spare element)
             entries += shown[p];
