@@ -33,8 +33,10 @@ struct TriangleCorners {
 
 // The fast gather's per-tile table of the triangles it has met: each set up
 // once per tile (its corners looked up, 1/w and the differences worked out),
-// though the tile's rows meet it several times. Direct-mapped on the id; a
-// tile starts with no valid entry (every slot's triangle kNoTriangle, 4 KB to clear).
+// though the tile's rows meet it several times. A one-sample tile's entries
+// are numbered by its triangle list (raster::TileBuffers::triangles); a
+// fragment list's are found through `slots`, direct-mapped on the id, which
+// start with no valid entry (every slot's triangle kNoTriangle, 4 KB to clear).
 //
 // A vec3 is kept as (x, y, z, 0) in a 4-float vector (GCC's vector extension,
 // one SSE register): its lane-wise IEEE operations give glm's bits per
@@ -73,10 +75,11 @@ struct TriangleTable {
     std::vector<GatheredTriangleExtras> extras;  // where beyond_plain
     std::vector<std::uint32_t> new_id;  // the triangle (kPackSlack spare)
     std::vector<std::uint32_t> entry_of_fragment;  // in bytes from the first entry (as Slot::entry)
-    // Per fragment of a batch: the first fragment of each row of fragments of one triangle (a head).
-    std::vector<std::uint32_t> head_of_fragment;  // its head's index among the batch's heads
+    // Per fragment of a batch (a fragment list) or of the tile (a one-sample tile): the first
+    // fragment of each row of fragments of one triangle (a head).
+    std::vector<std::uint32_t> head_of_fragment;  // its head's index among the batch's (tile's) heads
     std::vector<std::uint32_t> head_id, head_slot, head_entry;  // per head
-    // A one-sample tile's covered pixels, and their triangle ids and λ1 λ2, packed
+    // A one-sample tile's covered pixels, and their triangles (list positions) and λ1 λ2, packed
     // (kPackSlack: packing stores whole vectors, whose spare lanes land past the end).
     static constexpr std::size_t kPackSlack = 16;
     std::vector<std::uint32_t> pixels, ids;

@@ -220,11 +220,12 @@ private:
         };
         std::uintptr_t run_key = 0;  // the current run's material (no run yet: none)
         alignas(32) float batch_b1[kBatch], batch_b2[kBatch];  // perspective barycentrics of a batch's vectors
-        // In batches, each in three loops, so that no branch depends on whether
-        // a fragment's triangle is new (at 720p that was one miss per ~2 fragments):
-        // which fragments meet a new triangle, without a branch; the new
-        // triangles' set-ups; the fragments. An entry is indexed by set-up, not
-        // by slot, so a later triangle in the same slot does not overwrite it.
+        // In batches. Not indexed, each in three loops, so that no branch depends
+        // on whether a fragment's triangle is new (at 720p that was one miss per
+        // ~2 fragments): which fragments meet a new triangle, without a branch;
+        // the new triangles' set-ups; the fragments. An entry is indexed by
+        // set-up, not by slot, so a later triangle in the same slot does not
+        // overwrite it.
         std::size_t entry_count = 0;
         for (std::size_t begin = 0; begin < count; begin += kBatch) {
             const std::size_t end = std::min(count, begin + kBatch);
