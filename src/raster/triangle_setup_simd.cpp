@@ -136,24 +136,34 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
 
 // The kept lanes' records (bit j of `kept`: lane j's), one after another
 // from `records`, lane j's from word w of words[w] for every w: a transpose of
-// 16 × lanes words (intrinsics: xsimd 8.1 has no transpose or scatter). Each
-// lane's record is stored where the next kept one goes, lanes in order, so a
+// 16 × lanes words (intrinsics: xsimd 8.1 has no transpose or scatter); it may
+// write up to kLanes records from `records` whatever is kept. AVX2 and SSE
+// store each lane's record where the next kept one goes, lanes in order, so a
 // dropped lane's is overwritten by the next kept lane's or lies past the
 // last: no branch per lane, and no record is copied again.
 [[gnu::always_inline]] inline void to_records(const Int (&words)[16], std::uint64_t kept, RasterTriangle* records) {
-    std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
-    for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
 #if defined(__AVX512F__)
-    // Per 8 lanes (each 256-bit half), two 8 × 8 transposes as AVX2 does.
-    for (int half = 0; half < 2; ++half)
+    // The kept lanes first packed to the front of every word (one compress
+    // gives the order, a permute per word applies it), then per 8 of them two
+    // 8 × 8 transposes as AVX2 does, stored one record after another: rarely
+    // more than 8 of 16 lanes are kept, so mostly half the transposes and stores.
+    const __m512i order = _mm512_maskz_compress_epi32(
+        __mmask16(kept), _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    __m512 packed[16];
+    for (int w = 0; w < 16; ++w) packed[w] = _mm512_castsi512_ps(_mm512_permutexvar_epi32(order, words[w]));
+    const int halves = std::popcount(kept) > 8 ? 2 : 1;
+    for (int half = 0; half < halves; ++half)
         for (int part = 0; part < 2; ++part) {
             __m256 r[8];
-            for (int w = 0; w < 8; ++w) r[w] = simd::half_of(_mm512_castsi512_ps(words[8 * part + w]), half);
+            for (int w = 0; w < 8; ++w) r[w] = simd::half_of(packed[8 * part + w], half);
             simd::transpose8x8(r);
             for (int j = 0; j < 8; ++j)
-                _mm256_store_ps(reinterpret_cast<float*>(&records[at[8 * half + j]]) + 8 * part, r[j]);
+                _mm256_store_ps(reinterpret_cast<float*>(&records[8 * half + j]) + 8 * part, r[j]);
         }
-#elif defined(__AVX2__)
+#else
+    std::size_t at[kLanes];  // lane j's slot: the kept lanes before it
+    for (int j = 0; j < kLanes; ++j) at[j] = std::size_t(std::popcount(kept & ((std::uint64_t(1) << j) - 1)));
+#if defined(__AVX2__)
     // Two 8 × 8 transposes: words 0-7 and 8-15, each lane's half of a record.
     for (int part = 0; part < 2; ++part) {
         __m256 r[8];
@@ -169,6 +179,7 @@ static_assert(offsetof(RasterTriangle, y) == 12 && offsetof(RasterTriangle, px_m
         _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
         for (int j = 0; j < 4; ++j) _mm_store_ps(reinterpret_cast<float*>(&records[at[j]]) + 4 * part, r[j]);
     }
+#endif
 #endif
 }
 
