@@ -5,6 +5,8 @@
 # the table prints Tessera's and llvmpipe's medians and llvmpipe/Tessera.
 #   tools/race_table.sh [SCENE] [FRAMES]        defaults: spheres, 20 frames; ROUNDS (default 3)
 # ROWS="720p:1:1:0 4k:2:4:1 ..." picks rows (size:threads:msaa:cull) instead of all sixteen.
+# Before and after the table, tools/cpu_speeds.sh times each CPU alone (CPU_SPEEDS=0 skips it):
+# where they differ, the 1-thread rows depend on where the scheduler put each renderer.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 scene="${1:-spheres}"
@@ -15,6 +17,8 @@ if [ -z "$rows" ]; then
     rows+="$size:$threads:$msaa:$cull "
   done; done; done; done
 fi
+cpu_speeds() { [ "${CPU_SPEEDS:-1}" = 0 ] || ROUNDS=3 bash "$root/tools/cpu_speeds.sh" "$scene"; }
+cpu_speeds
 printf '%-10s %7s %4s %5s %12s %12s %9s\n' size threads msaa cull tessera_ms llvmpipe_ms ratio
 for row in $rows; do
   IFS=: read -r size threads msaa cull <<<"$row"
@@ -26,3 +30,4 @@ for row in $rows; do
   printf '%-10s %7s %4s %5s %12s %12s %9s\n' "${w}x${h}" "$threads" "$msaa" "$cull" "$t" "$g" "$r"
 done
 echo "(load average: $(cut -d' ' -f1-3 /proc/loadavg); $(nproc) CPUs)"
+cpu_speeds
