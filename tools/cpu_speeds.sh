@@ -15,6 +15,8 @@ rounds="${ROUNDS:-3}"
 [[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "cpu_speeds: ROUNDS must be a positive integer, not $rounds" >&2; exit 1; }
 [[ "$frames" =~ ^[1-9][0-9]*$ ]] || { echo "cpu_speeds: FRAMES must be a positive integer, not $frames" >&2; exit 1; }
 build_targets tessera
+# llvmpipe's side where OpenGL/EGL were found (the target exists only then).
+(build_targets tessera_gl_reference_cli) 2>/dev/null || true
 command -v taskset >/dev/null || { echo "cpu_speeds: taskset (util-linux) is missing" >&2; exit 1; }
 
 # The CPUs this process may run on, from the kernel's list (e.g. "0-1,4").
