@@ -37,10 +37,10 @@ frame_ms() {  # frame_ms RENDERER CPU: the median frame of one pinned run
       json="$(taskset -c "$2" "$build/tessera" bench "$scene" --width "$width" --height "$height" --threads 1 \
         --frames "$frames" --json)" ;;
     llvmpipe)
-      json="$(LP_NUM_THREADS=1 GLIBC_TUNABLES=glibc.malloc.trim_threshold=1073741824 taskset -c "$2" \
+      json="$(env $(llvmpipe_env 1) taskset -c "$2" \
         "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" --json)" ;;
   esac
-  python3 -c 'import json, sys; print(json.loads(sys.argv[1])["frame_ms_median"])' "$json"
+  json_field "$json" frame_ms_median
 }
 
 work="$(mktemp -d)"

@@ -30,30 +30,24 @@ build_targets tessera tessera_gl_reference_cli
   exit 1
 }
 
-field() {  # field JSON NAME: one top-level number from a JSON object
-  python3 -c 'import json, sys; print(json.loads(sys.argv[1])[sys.argv[2]])' "$1" "$2"
-}
-
 echo "race: $(basename "$scene") ${width}x${height}, msaa ${MSAA:-as the scene}, back faces ${cull_args[*]:-as the scene}, $threads threads, $frames frames, $rounds rounds"
 tessera_medians=()
 llvmpipe_medians=()
 for round in $(seq 1 "$rounds"); do
   t_json="$("$build/tessera" bench "$scene" --width "$width" --height "$height" --threads "$threads" \
     --frames "$frames" "${msaa_args[@]}" "${cull_args[@]}" --json)"
-  # A high trim threshold stops glibc returning llvmpipe's large per-frame scene
-  # allocations to the kernel each frame (which would time page faults, not rendering).
-  g_json="$(LP_NUM_THREADS="$threads" GLIBC_TUNABLES=glibc.malloc.trim_threshold=1073741824 \
+  g_json="$(env $(llvmpipe_env "$threads") \
     "$build/tessera_gl_reference" "$scene" --width "$width" --height "$height" --frames "$frames" "${msaa_args[@]}" \
     "${cull_args[@]}" --json)"
-  t_ms="$(field "$t_json" frame_ms_median)"
-  g_ms="$(field "$g_json" frame_ms_median)"
+  t_ms="$(json_field "$t_json" frame_ms_median)"
+  g_ms="$(json_field "$g_json" frame_ms_median)"
   tessera_medians+=("$t_ms")
   llvmpipe_medians+=("$g_ms")
   printf '  round %d: tessera %9.2f ms   llvmpipe %9.2f ms   ratio %5.2f\n' "$round" "$t_ms" "$g_ms" \
     "$(python3 -c 'import sys; print(float(sys.argv[2]) / float(sys.argv[1]))' "$t_ms" "$g_ms")"
 done
-echo "  (tessera: $(field "$t_json" isa) kernels, $(field "$t_json" threads) threads, msaa $(field "$t_json" msaa);" \
-  "$(field "$g_json" renderer), LP_NUM_THREADS=$threads, msaa $(field "$g_json" msaa))"
+echo "  (tessera: $(json_field "$t_json" isa) kernels, $(json_field "$t_json" threads) threads, msaa $(json_field "$t_json" msaa);" \
+  "$(json_field "$g_json" renderer), LP_NUM_THREADS=$threads, msaa $(json_field "$g_json" msaa))"
 
 python3 - "${tessera_medians[*]}" "${llvmpipe_medians[*]}" <<'PY'
 import statistics, sys
