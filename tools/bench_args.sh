@@ -1,7 +1,8 @@
 # Sourced by the side-by-side bench scripts (bench_scaling.sh, race_llvmpipe.sh, cpu_speeds.sh),
-# which take the same arguments: [SCENE] [WIDTH HEIGHT] [THREADS] [FRAMES], with (cpu_speeds.sh: no THREADS, always 1)
+# which take the same arguments: [SCENE] [WIDTH HEIGHT] [THREADS] [FRAMES], with
 # defaults scenes/spheres.toml 1280 720, 2 threads, 30 frames; SCENE is a path or a
 # name in scenes/. BUILD_DIR overrides the build folder (default build/, Release).
+# cpu_speeds.sh passes THREADS = 1 itself.
 #   parse_bench_args NAME "$@"   sets root, scene, width, height, threads, frames, build
 #   build_targets TARGET...      configures the build folder once, then builds TARGETs
 #   json_field JSON NAME         one top-level value of a JSON object
