@@ -28,7 +28,7 @@ function(tessera_add_fuzzers)
       ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_${target}.cpp
       ${PROJECT_SOURCE_DIR}/tests/fuzz/fuzz_targets.cpp)
     target_include_directories(fuzz_${target} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
-    target_link_libraries(fuzz_${target} PRIVATE tessera_render)
+    target_link_libraries(fuzz_${target} PRIVATE tessera_render tessera_internals)
     target_link_options(fuzz_${target} PRIVATE -fsanitize=fuzzer)
     set_target_properties(fuzz_${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/fuzz)
   endforeach()

@@ -14,11 +14,13 @@
 
 namespace tessera {
 
+// Opaque here (the library's own types, never needed to use a Scene): a texture image with its
+// mip chain, and a glTF file's nodes, skins, morph targets and animations.
 namespace texture {
-class Texture;  // texture/texture.hpp: an image with its mip chain, loaded with the scene
+class Texture;
 }
+struct GltfRig;
 struct Animation;  // tessera/animation.hpp: what changes from frame to frame
-struct GltfRig;    // src/scene/gltf_animation.hpp: a glTF file's nodes, skins, morph targets and animations
 
 // Limits on what a scene may ask for, named in one place.
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
@@ -228,10 +230,6 @@ public:
 // (src/scene/gltf_import.hpp); throws SceneError. gltf_camera (the CLI's
 // --camera NAME|INDEX) picks a glTF file's camera; a TOML file refuses it.
 Scene load_scene_file(const std::filesystem::path& path, const std::string& gltf_camera = "");
-// The same, taking glTF models from `models` (src/scene/model_cache.hpp): each
-// model file is imported once however many scenes loaded through it use it.
-class ModelCache;
-Scene load_scene_file(const std::filesystem::path& path, ModelCache& models, const std::string& gltf_camera = "");
 // The same from text in memory; source_name stands for the file in messages.
 Scene parse_scene(std::string_view toml_text, std::string_view source_name);
 

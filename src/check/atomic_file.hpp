@@ -1,5 +1,6 @@
 // Output files written to a temporary name beside the target and renamed into
-// place, so that nothing is ever half-written.
+// place, so that nothing is ever half-written (io/atomic_file.hpp does the work;
+// here the folders above the file are created first).
 #pragma once
 
 #include <filesystem>
@@ -9,7 +10,7 @@
 
 namespace tessera::check {
 
-// Throws std::runtime_error naming the file.
+// Throws std::runtime_error (io::WriteError) naming the file.
 void write_text_atomically(const std::filesystem::path& path, std::string_view text);
 void write_png_atomically(const OIIO::ImageBuf& image, const std::filesystem::path& path);  // as 8-bit
 void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);

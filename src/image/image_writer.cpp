@@ -1,10 +1,7 @@
-#include <atomic>
 #include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
@@ -14,6 +11,7 @@
 #include <Imath/half.h>
 
 #include "image/png_writer.hpp"
+#include "io/atomic_file.hpp"
 #include "tessera/image_io.hpp"
 
 namespace tessera {
@@ -28,15 +26,6 @@ ImageFormat format_for(const std::filesystem::path& path) {
     if (ext == ".png") return ImageFormat::png;
     if (ext == ".exr") return ImageFormat::exr;
     return ImageFormat::none;
-}
-
-// A name beside the target, unique to this process and call, so that the
-// final rename is atomic (same directory, same file system).
-std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
-    static std::atomic<unsigned> counter{0};
-    std::filesystem::path tmp = path;
-    tmp += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-    return tmp;
 }
 
 // One EXR channel: its name, where its values are, and how the file stores it.
@@ -132,19 +121,13 @@ void write_image(const RenderedImage& image, const std::filesystem::path& path) 
     std::vector<ExrChannel> channels;
     if (format == ImageFormat::exr) channels = exr_channels(image, path);
 
-    const std::filesystem::path tmp = temporary_path_for(path);
-    std::string reason = format == ImageFormat::png ? write_png_rgb8(image.display.data(), image.width, image.height, tmp)
-                                                    : write_exr(channels, image.width, image.height, tmp);
-    if (!reason.empty()) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw ImageError(path.string() + ": cannot write image: " + reason);
-    }
-    std::error_code error;
-    std::filesystem::rename(tmp, path, error);
-    if (error) {
-        std::filesystem::remove(tmp, error);
-        throw ImageError(path.string() + ": cannot move the written image into place: " + error.message());
+    try {
+        io::write_atomically(path, "image", [&](const std::filesystem::path& tmp) {
+            return format == ImageFormat::png ? write_png_rgb8(image.display.data(), image.width, image.height, tmp)
+                                              : write_exr(channels, image.width, image.height, tmp);
+        });
+    } catch (const io::WriteError& e) {
+        throw ImageError(e.what());
     }
 }
 

@@ -2,13 +2,11 @@
 // ts/dur in microseconds on pid/tid tracks, and metadata events (ph "M") naming them.
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
-
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.hpp"
 #include "profile/frame_profile_output.hpp"
 
 namespace tessera::profile {
@@ -85,24 +83,7 @@ void write_chrome_trace(std::span<const TracedFrame> frames, const std::string& 
     for (std::size_t i = 0; i < frames.size(); ++i) add_frame(events, int(i), frames[i]);
     const json trace = {{"traceEvents", std::move(events)}, {"displayTimeUnit", "ms"}};
 
-    // A temporary name beside the target, renamed into place: never a half-written trace.
-    const std::filesystem::path temporary = path.string() + ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << trace.dump();
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw std::runtime_error(path.string() + ": cannot write the trace");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw std::runtime_error(path.string() + ": cannot write the trace: " + error.message());
-    }
+    io::write_text_atomically(path, trace.dump(), "trace");  // never a half-written trace
 }
 
 }  // namespace tessera::profile

@@ -36,4 +36,8 @@ private:
     std::size_t imports_ = 0;
 };
 
+// load_scene_file (tessera/scene.hpp) taking glTF models from `models`: each model file is
+// imported once however many scenes loaded through it use it.
+Scene load_scene_file(const std::filesystem::path& path, ModelCache& models, const std::string& gltf_camera = "");
+
 }  // namespace tessera

@@ -17,7 +17,13 @@ std::vector<std::filesystem::path> oiio_module_candidates() {
     if (const char* chosen = std::getenv("TESSERA_OIIO_MODULE"); chosen && *chosen) return {chosen};
     std::error_code error;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) candidates.push_back(exe.parent_path() / kTesseraOiioModuleFile);
+    if (!error) {
+        candidates.push_back(exe.parent_path() / kTesseraOiioModuleFile);
+#ifdef TESSERA_HELPERS_FROM_BIN
+        // An installed tree: bin/tessera -> lib/tessera/ (a relative path: the tree may be moved).
+        candidates.push_back((exe.parent_path() / TESSERA_HELPERS_FROM_BIN / kTesseraOiioModuleFile).lexically_normal());
+#endif
+    }
 #ifdef TESSERA_OIIO_MODULE_BUILD_PATH
     // Test programs live elsewhere in the build tree than the module.
     const std::filesystem::path built = TESSERA_OIIO_MODULE_BUILD_PATH;

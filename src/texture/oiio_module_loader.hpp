@@ -1,6 +1,7 @@
 // Finds and opens the OpenImageIO module (oiio_module/oiio_module_abi.hpp) on
-// first use: beside the running executable (/proc/self/exe), else where the
-// build tree put it; TESSERA_OIIO_MODULE in the environment names it instead. Texture files that are neither PNG nor JPEG need it.
+// first use: beside the running executable (/proc/self/exe), else in lib/tessera/ of an
+// installed tree (bin/../lib/tessera), else where the build tree put it;
+// TESSERA_OIIO_MODULE in the environment names it instead. Texture files that are neither PNG nor JPEG need it.
 #pragma once
 
 #include <filesystem>
