@@ -35,16 +35,24 @@ Depth json_nesting_depth(std::string_view text, std::size_t limit) {
 
 Depth toml_nesting_depth(std::string_view text, std::size_t limit) {
     Depth result;
-    std::vector<char> open;     // '[' and '{' of the values being read
+    struct Open {
+        char bracket;       // '[' or '{'
+        std::size_t depth;  // the level of the array or inline table itself
+    };
+    std::vector<Open> open;
     std::size_t line = 1;
-    bool key_context = true;    // reading a key (line start, or after '{' or ',' in an inline table)
-    bool header = false;        // inside a [table] or [[array]] header
+    std::size_t table_depth = 0;  // the last [table] header's parts: keys under it are below them
+    bool key_context = true;      // reading a key (line start, or after '{' or ',' in an inline table)
+    bool header = false;          // inside a [table] or [[array]] header
     bool line_start = true;
-    std::size_t key_levels = 0; // dotted parts of the key being read
+    std::size_t dots = 0;         // dots of the key (or header) being read
+    std::size_t value_depth = 0;  // the level of the key whose value follows '='
     const auto reach = [&](std::size_t depth) {
         if (depth > result.depth) result.depth = depth;
         if (depth > limit && result.line == 0) result.line = line;
     };
+    // Keys are below the innermost inline table, or below the table header at the top.
+    const auto key_base = [&] { return open.empty() ? table_depth : open.back().depth; };
     const auto skip_string = [&](std::size_t& i) {
         const char quote = text[i];
         const bool multi = text.substr(i, 3) == std::string(3, quote);
@@ -72,7 +80,7 @@ Depth toml_nesting_depth(std::string_view text, std::size_t limit) {
             ++line;
             header = false;
             line_start = true;
-            if (open.empty()) key_context = true, key_levels = 0;
+            if (open.empty()) key_context = true, dots = 0;
             continue;
         }
         if (c == ' ' || c == '\t' || c == '\r') continue;
@@ -83,31 +91,39 @@ Depth toml_nesting_depth(std::string_view text, std::size_t limit) {
         } else if (c == '"' || c == '\'') {
             skip_string(i);
         } else if (header) {
-            if (c == '.') reach(++key_levels + 1);
-            else if (c == ']') header = false;
+            if (c == '.') {
+                reach(++dots + 1);
+            } else if (c == ']') {
+                header = false;
+                table_depth = dots + 1;
+                reach(table_depth);
+                if (i + 1 < text.size() && text[i + 1] == ']') ++i;
+            }
         } else if (key_context) {
             if (c == '[' && at_line_start && open.empty()) {
-                header = true, key_levels = 0;
-                reach(1);
+                header = true, dots = 0;
                 if (i + 1 < text.size() && text[i + 1] == '[') ++i;
             } else if (c == '.') {
-                reach(open.size() + ++key_levels + 1);
+                reach(key_base() + ++dots + 1);
             } else if (c == '=') {
                 key_context = false;
-                reach(open.size() + key_levels + 1);
-                key_levels = 0;
+                value_depth = key_base() + dots + 1;
+                reach(value_depth);
+                dots = 0;
             } else if (c == '}' && !open.empty()) {  // an empty inline table
                 open.pop_back();
                 key_context = false;
             }
         } else if (c == '[' || c == '{') {
-            open.push_back(c);
-            reach(open.size() + 1);
-            if (c == '{') key_context = true, key_levels = 0;
+            // An array's elements are one below it; anything else is the value of the key before '='.
+            const std::size_t depth = !open.empty() && open.back().bracket == '[' ? open.back().depth + 1 : value_depth;
+            open.push_back({c, depth});
+            reach(depth + (c == '[' ? 1 : 0));
+            if (c == '{') key_context = true, dots = 0;
         } else if ((c == ']' || c == '}') && !open.empty()) {
             open.pop_back();
-        } else if (c == ',' && !open.empty() && open.back() == '{') {
-            key_context = true, key_levels = 0;
+        } else if (c == ',' && !open.empty() && open.back().bracket == '{') {
+            key_context = true, dots = 0;
         }
     }
     return result;

@@ -37,7 +37,7 @@ TEST_CASE("io: JSON depth counts arrays and objects, not brackets in strings") {
 TEST_CASE("io: TOML depth counts dotted keys, table headers, inline tables and arrays") {
     CHECK(toml_nesting_depth("a = 1\n", 100).depth == 1);
     CHECK(toml_nesting_depth("a.b.c = 1\n", 100).depth == 3);
-    CHECK(toml_nesting_depth("[a.b]\nc.d = 1\n", 100).depth == 2);
+    CHECK(toml_nesting_depth("[a.b]\nc.d = 1\n", 100).depth == 4);  // keys are below their table
     CHECK(toml_nesting_depth("x = [[1, 2], [3]]\n", 100).depth == 3);
     CHECK(toml_nesting_depth("x = { a.b = { c = 1 } }\n", 100).depth == 4);
     // Dots in numbers, strings and comments are not levels.
@@ -45,9 +45,9 @@ TEST_CASE("io: TOML depth counts dotted keys, table headers, inline tables and a
     CHECK(toml_nesting_depth("\"a.b\".c = 1\n", 100).depth == 2);
     CHECK(toml_nesting_depth("s = \"\"\"\n[[[a.b.c]]]\n\"\"\"\nt = 2\n", 100).depth == 1);
     // Multi-line arrays keep their depth across lines; the next key starts afresh.
-    CHECK(toml_nesting_depth("x = [\n  [1],\n  [2],\n]\ny.z = 1\n", 100).depth == 2);
+    CHECK(toml_nesting_depth("x = [\n  [1],\n  [2],\n]\ny.z = 1\n", 100).depth == 3);
     CHECK(toml_nesting_depth("[[objects]]\nmesh = \"cube\"\n[objects.material]\nalbedo = [1, 0, 0]\n", 100).depth ==
-          2);
+          4);
 }
 
 TEST_CASE("io: TOML 100k levels deep is refused with the line, whichever way it nests") {
@@ -64,5 +64,7 @@ TEST_CASE("io: TOML 100k levels deep is refused with the line, whichever way it 
                          "tables); refused before parsing",
                          std::runtime_error);
     CHECK_NOTHROW(check_toml_depth(repeat("a.", 63) + "a = 1\n", kMaxTomlDepth, "ok.toml"));
+    // A key under a deep header counts the header's levels too.
+    CHECK_THROWS(check_toml_depth("[" + repeat("a.", 40) + "a]\n" + repeat("b.", 30) + "b = 1\n", kMaxTomlDepth, "x"));
     CHECK_THROWS(check_toml_depth(repeat("a.", 64) + "a = 1\n", kMaxTomlDepth, "deep.toml"));
 }
