@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <unistd.h>
+#include <sys/stat.h>
 
 #include <cerrno>
 #include <ctime>
@@ -11,10 +12,13 @@
 #include <functional>
 #include <future>
 #include <optional>
+#include <map>
 #include <set>
 #include <stdexcept>
 
 #include "batch/frames.hpp"
+#include "io/input_file.hpp"
+#include "io/memory_budget.hpp"
 #include "scene/scene_validation.hpp"
 #include "tessera/animation.hpp"
 #include "tessera/image_io.hpp"
@@ -62,8 +66,16 @@ class RecordLog {
 public:
     explicit RecordLog(const std::string& path) : path_(path) {
         if (path.empty()) return;
-        fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        io::check_output_file(path, "the log");  // a FIFO would block the open, a device swallow the records
+        // O_NONBLOCK: a name that became a FIFO since is refused (ENXIO) instead of waiting for a reader.
+        fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOCTTY | O_NONBLOCK, 0644);
         if (fd_ < 0) throw std::runtime_error(path + ": cannot open the log: " + std::strerror(errno));
+        struct stat st {};
+        if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+            ::close(fd_);
+            throw std::runtime_error(path + ": cannot write the log: not a regular file");
+        }
+        ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);  // blocking writes again
     }
     ~RecordLog() {
         if (fd_ >= 0) ::close(fd_);
@@ -182,6 +194,39 @@ std::vector<WorkItem> work_items(const BatchJob& job) {
     return items;
 }
 
+namespace {
+
+// Two -o patterns that name the same file for different frames or scenes
+// (x{frame}.png at 11 and x1{frame}.png at 1) would overwrite one another:
+// refused before anything renders. Jobs of more files than are worth listing
+// are left to the patterns' own checks.
+void check_outputs_distinct(const BatchJob& job) {
+    const std::vector<int> frames = job.frames ? *job.frames : std::vector<int>{0};
+    const std::size_t files = frames.size() * job.scene_paths.size() * job.outputs.size();
+    if (job.outputs.size() < 2 || files > 4'000'000) return;
+    struct Writer {
+        std::size_t output;
+        std::size_t scene;
+        int frame;
+    };
+    std::map<std::string, Writer> writers;
+    for (std::size_t s = 0; s < job.scene_paths.size(); ++s)
+        for (const int frame : frames)
+            for (std::size_t o = 0; o < job.outputs.size(); ++o) {
+                const std::string file = expand_output_pattern(job.outputs[o], stem_of(job.scene_paths[s]), frame);
+                const auto [it, added] = writers.emplace(file, Writer{o, s, frame});
+                if (added || (it->second.frame == frame && it->second.scene == s)) continue;
+                const Writer& first = it->second;
+                throw std::invalid_argument(
+                    "-o '" + job.outputs[first.output] + "' (frame " + std::to_string(first.frame) + " of " +
+                    job.scene_paths[first.scene] + ") and -o '" + job.outputs[o] + "' (frame " +
+                    std::to_string(frame) + " of " + job.scene_paths[s] + ") both write '" + file +
+                    "': one would overwrite the other");
+            }
+}
+
+}  // namespace
+
 void check_job(const BatchJob& job) {
     for (const std::string& out : job.outputs) {
         if (!is_supported_image_path(out))
@@ -194,6 +239,7 @@ void check_job(const BatchJob& job) {
                 throw std::invalid_argument("with several frames every -o must contain {frame} or {frame:0N}, got '" +
                                             out + "'");
     }
+    check_outputs_distinct(job);
     if (job.scene_paths.size() < 2) return;
     for (const std::string& out : job.outputs) {
         if (out.find("{scene}") == std::string::npos)
@@ -318,7 +364,9 @@ BatchResult run_batch(const BatchJob& job, Renderer& renderer, std::FILE* progre
             }
         } catch (const std::exception& e) {
             progress.finish();
-            std::fprintf(errors, "tessera: error: %s\n", e.what());
+            const bool internal = dynamic_cast<const std::bad_alloc*>(&e) || dynamic_cast<const std::length_error*>(&e);
+            std::fprintf(errors, "tessera: error: %s%s\n", internal ? (scene_path + ": ").c_str() : "",
+                         io::error_sentence(e).c_str());
             result.failed_scenes.push_back(scene_path);
         }
     }

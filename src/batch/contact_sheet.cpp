@@ -6,6 +6,9 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "io/input_file.hpp"
+#include "io/memory_budget.hpp"
+
 namespace tessera::batch {
 
 RenderedImage make_contact_sheet(const std::vector<std::string>& files, const ContactSheetLayout& layout) {
@@ -17,19 +20,47 @@ RenderedImage make_contact_sheet(const std::vector<std::string>& files, const Co
     const int rows = (int(files.size()) + columns - 1) / columns;
     RenderedImage sheet;
     for (std::size_t i = 0; i < files.size(); ++i) {
+        std::uint64_t file_bytes = 0;
+        try {  // a FIFO or device would block the read or never end
+            file_bytes = io::check_input_file(files[i], io::memory_budget(), "frame");
+        } catch (const io::InputFileError& e) {
+            // "cannot open frame: no such file" -> "F: cannot read the frame: no such file"
+            const std::string reason = e.reason().substr(std::min(e.reason().find(": ") + 2, e.reason().size()));
+            throw std::runtime_error(files[i] + ": cannot read the frame: " + reason);
+        }
         OIIO::ImageBuf frame(files[i]);
+        const OIIO::ImageSpec& header = frame.spec();  // the header only: its size is checked before the pixels
+        if (header.width < 1 || header.height < 1 || header.nchannels < 1)
+            throw std::runtime_error(files[i] + ": cannot read the frame: " +
+                                     (frame.has_error() ? frame.geterror() : std::string("no pixels")));
+        try {
+            io::check_decoded_size(file_bytes,
+                                   io::saturating_mul(std::uint64_t(header.width) * std::uint64_t(header.height),
+                                                      std::uint64_t(header.nchannels)),
+                                   "the " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                                       " frame");
+        } catch (const io::MemoryBudgetError& e) {
+            throw std::runtime_error(files[i] + ": " + e.what());
+        }
         if (!frame.read(0, 0, true, OIIO::TypeDesc::UINT8) || frame.nchannels() < 1)
             throw std::runtime_error(files[i] + ": cannot read the frame: " + frame.geterror());
         const OIIO::ROI size = frame.roi();
         if (tile_height == 0) {
-            // Every tile gets the first frame's aspect ratio.
-            tile_height = std::max(1, int(double(layout.tile_width) * size.height() / size.width() + 0.5));
-            sheet.width = layout.gap + columns * (layout.tile_width + layout.gap);
-            sheet.height = layout.gap + rows * (tile_height + layout.gap);
-            if (double(sheet.width) * sheet.height > double(kMaxImagePixels))
-                throw std::invalid_argument("contact sheet: " + std::to_string(sheet.width) + "x" +
-                                            std::to_string(sheet.height) + " pixels is too large; use fewer frames or "
-                                                                           "smaller tiles");
+            // Every tile gets the first frame's aspect ratio. In 64 bits and checked
+            // before narrowing: a tall frame or a wide tile overflowed int here.
+            const double scaled = double(layout.tile_width) * size.height() / size.width() + 0.5;
+            const long long height = scaled > double(kMaxImagePixels) ? kMaxImagePixels + 1
+                                                                       : std::max(1LL, (long long)scaled);
+            const long long width_total = layout.gap + (long long)columns * ((long long)layout.tile_width + layout.gap);
+            const long long height_total = layout.gap + (long long)rows * (height + (long long)layout.gap);
+            if (double(width_total) * double(height_total) > double(kMaxImagePixels) || height > kMaxImagePixels)
+                throw std::invalid_argument("contact sheet: " + std::to_string(width_total) + "x" +
+                                            std::to_string(height_total) + " pixels is too large (at most " +
+                                            std::to_string(kMaxImagePixels) +
+                                            "); use fewer frames or smaller tiles");
+            tile_height = int(height);
+            sheet.width = int(width_total);
+            sheet.height = int(height_total);
             sheet.display.resize(std::size_t(sheet.width) * std::size_t(sheet.height) * 3);
             for (std::size_t p = 0; p < sheet.display.size(); ++p) sheet.display[p] = layout.background[p % 3];
         }

@@ -8,6 +8,9 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "io/input_file.hpp"
+#include "io/memory_budget.hpp"
+
 namespace tessera::check {
 
 std::string_view status_name(Status status) {
@@ -73,8 +76,27 @@ OIIO::ImageBuf actual_image(const RenderedImage& image, GoldenKind kind) {
     return half;
 }
 
-OIIO::ImageBuf read_golden(const std::filesystem::path& golden) {
+OIIO::ImageBuf read_golden(const std::filesystem::path& golden, int render_width, int render_height) {
+    std::uint64_t file_bytes = 0;
+    try {
+        file_bytes = io::check_input_file(golden, io::memory_budget(), "golden image");
+    } catch (const io::InputFileError& e) {
+        throw std::runtime_error(golden.string() + ": " + e.reason());
+    }
     OIIO::ImageBuf buffer(golden.string());
+    const OIIO::ImageSpec& spec = buffer.spec();  // the header only
+    if (spec.width > 0 && render_width > 0 && (spec.width != render_width || spec.height != render_height))
+        return buffer;
+    try {  // the file's own samples (1 byte for PNG), then as float
+        const std::uint64_t pixels = io::saturating_mul(std::uint64_t(std::max(spec.width, 0)),
+                                                        std::uint64_t(std::max(spec.height, 0)));
+        const std::uint64_t samples = io::saturating_mul(pixels, std::uint64_t(std::max(spec.nchannels, 0)));
+        const std::string what = "the " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " golden image";
+        io::check_decoded_size(file_bytes, samples, what);
+        io::check_memory(io::saturating_mul(samples, sizeof(float)), what);
+    } catch (const io::MemoryBudgetError& e) {
+        throw std::runtime_error(golden.string() + ": " + e.what());
+    }
     if (!buffer.read(0, 0, true, OIIO::TypeDesc::FLOAT))
         throw std::runtime_error(golden.string() + ": cannot read golden image: " + buffer.geterror());
     return buffer;

@@ -43,8 +43,12 @@ struct Comparison {
 // radiance rounded to half. The buffer may point into `image`.
 OIIO::ImageBuf actual_image(const RenderedImage& image, GoldenKind kind);
 
-// Reads a golden image as float. Throws std::runtime_error naming the file.
-OIIO::ImageBuf read_golden(const std::filesystem::path& golden);
+// Reads a golden image as float. Throws std::runtime_error naming the file: a
+// FIFO or device, or pixels over the memory budget (io/memory_budget.hpp), are
+// refused before reading. A golden of another size than render_width x
+// render_height (when given) keeps only its header: the comparison fails on
+// the size without the pixels being read.
+OIIO::ImageBuf read_golden(const std::filesystem::path& golden, int render_width = 0, int render_height = 0);
 
 // Compares and classifies. Sizes or channels that differ are a failure with
 // the reason. `kind` says which units the thresholds are in (for messages).

@@ -40,6 +40,8 @@
 #include <toml++/toml.h>
 
 #include "check/suite.hpp"
+#include "io/input_file.hpp"
+#include "io/nesting_depth.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::check {
@@ -121,6 +123,9 @@ void apply_defaults(std::vector<SceneEntry>& scenes, const SuiteDefaults& defaul
     }
 }
 
+// A manifest lists scenes by pattern: a page of TOML.
+constexpr std::uint64_t kMaxManifestBytes = 16ull << 20;
+
 class ManifestReader {
 public:
     explicit ManifestReader(const fs::path& manifest) : manifest_(manifest), source_(manifest.string()) {}
@@ -128,7 +133,11 @@ public:
     Suite read(const SuiteDefaults& defaults) {
         toml::table root;
         try {
-            root = toml::parse_file(source_);
+            const std::string text = io::read_input_text(manifest_, kMaxManifestBytes, "check manifest");
+            io::check_toml_depth(text, io::kMaxTomlDepth, source_);  // toml++ recurses per level
+            root = toml::parse(text, source_);
+        } catch (const io::InputFileError& error) {
+            throw ManifestError(error.what());
         } catch (const toml::parse_error& error) {
             const toml::source_position where = error.source().begin;
             throw ManifestError(source_ + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
@@ -340,7 +349,7 @@ void set_threshold(Thresholds& t, std::string_view key, double value) {
 
 Suite load_manifest(const fs::path& manifest, const SuiteDefaults& command_line) {
     std::error_code error;
-    if (!fs::is_regular_file(manifest, error)) throw ManifestError(manifest.string() + ": cannot open manifest");
+    if (!fs::exists(manifest, error)) throw ManifestError(manifest.string() + ": cannot open manifest");
     return ManifestReader(manifest).read(command_line);
 }
 

@@ -19,19 +19,39 @@ bool is_inside(const fs::path& path, const fs::path& folder) {
     return !relative.empty() && *relative.begin() != "..";
 }
 
+// The path with every symbolic link resolved (as far as it exists).
+fs::path resolved(const fs::path& path) {
+    std::error_code error;
+    fs::path real = fs::weakly_canonical(path, error);
+    return error ? path : real;
+}
+
 // One report image link of a shard, as the merged report links it; an image
-// inside the shard's folder is copied to the same place under merged_dir.
+// inside the shard's folder is copied to the same place under merged_dir. The
+// copy goes only inside merged_dir (a link such as "a/../../x" cannot climb out
+// of it), and an image that is a symbolic link, or sits in a linked folder,
+// leading out of the shard's folder is refused: merging must not copy the
+// machine's files into a report.
 std::string merge_image(const std::string& link, const fs::path& shard_dir, const fs::path& merged_dir,
                         const fs::path& summary) {
     if (link.empty()) return link;
     const fs::path target = (shard_dir / link).lexically_normal();
     std::error_code error;
-    if (!fs::is_regular_file(target, error))
-        throw MergeError(summary.string() + ": the report image " + target.string() + " is missing");
     if (!is_inside(target, shard_dir))  // e.g. a PNG golden linked because the render matched it
         return target.lexically_relative(merged_dir).generic_string();
-    copy_file_atomically(target, merged_dir / link);
-    return link;
+    if (!is_inside(resolved(target), resolved(shard_dir)))
+        throw MergeError(summary.string() + ": the report image " + target.string() +
+                         " is a symbolic link (or in a linked folder) leading out of the shard's folder; refused");
+    if (!fs::is_regular_file(target, error))
+        throw MergeError(summary.string() + ": the report image " + target.string() + " is missing");
+    const fs::path relative = target.lexically_relative(shard_dir);
+    const fs::path destination = merged_dir / relative;
+    if (!is_inside(resolved(destination), resolved(merged_dir)))
+        throw MergeError(summary.string() + ": the report image " + relative.string() +
+                         " would be written outside the merged report folder " + merged_dir.string() +
+                         " (a linked folder there); refused");
+    copy_file_atomically(target, destination);
+    return relative.generic_string();
 }
 
 }  // namespace
@@ -53,6 +73,8 @@ CheckRun merge_shard_reports(const std::vector<fs::path>& shard_dirs, const fs::
         if (!fs::is_regular_file(part.summary, error))
             throw MergeError(part.summary.string() +
                              ": no such file; give the report folders of the shards (each holds a summary.json)");
+        if (!is_inside(resolved(part.summary), resolved(part.dir)))
+            throw MergeError(part.summary.string() + ": a symbolic link leading out of the shard's folder; refused");
         try {
             part.run = read_json_summary(part.summary);
         } catch (const SummaryError& e) {
@@ -70,6 +92,12 @@ CheckRun merge_shard_reports(const std::vector<fs::path>& shard_dirs, const fs::
         if (const auto it = parts.find(run.shard.index); it != parts.end())
             throw MergeError(part.summary.string() + ": shard " + batch::shard_text(run.shard) + " is also " +
                              it->second.summary.string());
+        // Before shard_items lists the part: a summary cannot claim more scenes than its shards hold.
+        if (run.shard.count < 1 ||
+            run.suite_scenes > (run.scenes.size() + 1) * std::size_t(run.shard.count))
+            throw MergeError(part.summary.string() + ": shard " + batch::shard_text(run.shard) + " holds " +
+                             std::to_string(run.scenes.size()) + " scenes, too few for a suite of " +
+                             std::to_string(run.suite_scenes));
         if (run.scenes.size() != batch::shard_items(run.suite_scenes, run.shard).size())
             throw MergeError(part.summary.string() + ": shard " + batch::shard_text(run.shard) + " holds " +
                              std::to_string(run.scenes.size()) + " scenes, but that part of " +

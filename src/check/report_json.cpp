@@ -10,6 +10,8 @@
 
 #include "check/atomic_file.hpp"
 #include "check/report.hpp"
+#include "io/input_file.hpp"
+#include "io/nesting_depth.hpp"
 
 namespace tessera::check {
 
@@ -199,14 +201,22 @@ void write_json_summary(const CheckRun& run, const std::filesystem::path& path) 
     write_text_atomically(path, json_summary(run));
 }
 
+// What json_summary writes: 4 levels, ~1 KB a scene (256 MB is ~250k scenes).
+constexpr std::size_t kMaxSummaryDepth = 16;
+constexpr std::uint64_t kMaxSummaryBytes = 256ull << 20;
+
 CheckRun read_json_summary(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw SummaryError(path.string() + ": cannot read the summary (no such file?)");
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text;
+    try {
+        // A summary holds a few hundred bytes per scene.
+        text = io::read_input_text(path, kMaxSummaryBytes, "summary");
+        io::check_json_depth(text, kMaxSummaryDepth, path.string());  // nlohmann's parser recurses per level
+    } catch (const std::runtime_error& e) {
+        throw SummaryError(e.what());
+    }
     CheckRun run;
     try {
-        const nlohmann::json summary = nlohmann::json::parse(text.str());
+        const nlohmann::json summary = nlohmann::json::parse(text);
         JsonReader reader{summary};
         const std::string format = reader.as<std::string>("format");
         if (format != kSummaryFormat)

@@ -103,7 +103,7 @@ SceneResult check_scene(const SceneRun& run) {
         r.images.actual = report_png(display, ".actual.png");
     } else {
         try {
-            const OIIO::ImageBuf golden = read_golden(r.golden);
+            const OIIO::ImageBuf golden = read_golden(r.golden, image->width, image->height);
             const OIIO::ImageBuf actual = actual_image(*image, r.golden_kind);
             const Comparison comparison = compare_images(actual, golden, entry.thresholds, r.golden_kind);
             r.status = comparison.status;

@@ -23,6 +23,7 @@
 #include "cli/frame_options.hpp"
 #include "cli/load_stats.hpp"
 #include "cli/tools_exec.hpp"
+#include "io/memory_budget.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
@@ -46,12 +47,14 @@ struct RenderCommand {
     std::vector<std::string> aov_lists;  // each "depth,normal,..." as given to --aov
     tessera::RenderSettings settings;
     // Batch rendering (src/batch/): frame ranges, shards, resuming, records.
-    std::string frames;                 // --frames 0-239:2; "" = each scene as loaded (frame 0)
+    std::optional<std::string> frames;  // --frames 0-239:2; unset = each scene as loaded (frame 0); "" is refused
     std::optional<std::string> shard;   // --shard I/N
     std::optional<int> shard_count;     // --shard-count N (Kubernetes Indexed Jobs)
     bool skip_existing = false;
     std::string log_path;
     bool serial_writes = false;
+    std::string max_memory;             // --max-memory SIZE; "" = io::default_memory_budget()
+    bool allow_external_uris = false;   // --allow-external-uris
 };
 
 bool is_exr_path(const std::string& path) {
@@ -89,7 +92,7 @@ void pose_for_render(const RenderCommand& cmd, const std::string& scene_path, te
                                   "each [[models]] entry chooses its own with 'animation'");
     if (cmd.time) {
         tessera::set_scene_time(scene, parse_seconds(*cmd.time), cmd.animation);
-    } else if (!cmd.frames.empty() && gltf) {
+    } else if (cmd.frames && gltf) {
         tessera::play_gltf_animation(scene, cmd.animation);
     } else if (!cmd.animation.empty()) {
         throw tessera::SceneError(scene_path + ": --animation chooses what --time or --frames plays; give one of them");
@@ -123,12 +126,14 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
 
 // One failing scene does not stop the others; the exit status says whether any failed.
 int run_render(const RenderCommand& cmd) {
-    if (cmd.time && !cmd.frames.empty())
+    if (!cmd.max_memory.empty()) tessera::io::set_memory_budget(tessera::io::parse_byte_size(cmd.max_memory));
+    tessera::set_external_uris_allowed(cmd.allow_external_uris);
+    if (cmd.time && cmd.frames)
         throw std::invalid_argument("--time renders one moment and --frames a range of them; give one of the two");
     tessera::batch::BatchJob job;
     job.scene_paths = cmd.scene_paths;
     job.outputs = cmd.outputs;
-    if (!cmd.frames.empty()) job.frames = tessera::batch::parse_frame_ranges(cmd.frames);
+    if (cmd.frames) job.frames = tessera::batch::parse_frame_ranges(*cmd.frames);
     job.shard = tessera::batch::choose_shard(cmd.shard, cmd.shard_count, tessera::batch::process_environment());
     job.skip_existing = cmd.skip_existing;
     job.log_path = cmd.log_path;
@@ -182,6 +187,17 @@ void add_batch_options(CLI::App* command, RenderCommand& render) {
                       "previous one is encoded: same files, one more image in memory)");
 }
 
+// Hostile input (docs/robustness.md): the memory budget and where glTF URIs may point.
+void add_input_limit_options(CLI::App* command, RenderCommand& render) {
+    command->add_option("--max-memory", render.max_memory,
+                        "Memory budget for what one input may decode to (textures, a glTF model's meshes), e.g. 4G "
+                        "or 512M, checked before allocating; default: half of physical memory, or "
+                        "TESSERA_MAX_MEMORY");
+    command->add_flag("--allow-external-uris", render.allow_external_uris,
+                      "Let glTF buffer and image URIs name files outside the model's folder (absolute paths, ../, "
+                      "symbolic links out); refused by default");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -207,6 +223,7 @@ int main(int argc, char** argv) {
     tessera::cli::add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
     add_batch_options(render_app, render);
+    add_input_limit_options(render_app, render);
     render_app->add_option("--camera", render.camera,
                            "For glTF files: the camera to render from, by name or by index in the file's cameras "
                            "(default: the first perspective camera in the node tree)");
@@ -232,7 +249,7 @@ int main(int argc, char** argv) {
         for (const tessera::cli::ToolCommand& tool : tessera::cli::tool_commands())
             if (*app.get_subcommand(tool.name)) return tessera::cli::exec_tools(argc, argv);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        std::fprintf(stderr, "tessera: error: %s\n", tessera::io::error_sentence(e).c_str());
         return 1;
     }
     return 1;

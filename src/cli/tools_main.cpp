@@ -3,6 +3,7 @@
 // check ...`, so usage and messages read as tessera's.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -10,6 +11,8 @@
 #include "cli/check_command.hpp"
 #include "cli/contact_sheet_command.hpp"
 #include "cli/frame_options.hpp"
+#include "io/memory_budget.hpp"
+#include "scene/gltf_import.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{"Tessera: a multithreaded SIMD CPU rasterizer with a PBR fragment stage", "tessera"};
@@ -42,6 +45,18 @@ int main(int argc, char** argv) {
     tessera::cli::ContactSheetCommand contact_sheet;
     CLI::App* contact_sheet_app = tessera::cli::add_contact_sheet_command(app, contact_sheet);
 
+    // Hostile input (docs/robustness.md), as for render.
+    std::string max_memory;
+    bool allow_external_uris = false;
+    for (CLI::App* command : {bench_app, check_app, contact_sheet_app}) {
+        command->add_option("--max-memory", max_memory,
+                            "Memory budget for what one input may decode to, e.g. 4G or 512M; default: half of "
+                            "physical memory, or TESSERA_MAX_MEMORY");
+        if (command != contact_sheet_app)
+            command->add_flag("--allow-external-uris", allow_external_uris,
+                              "Let glTF URIs name files outside the model's folder (refused by default)");
+    }
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -49,11 +64,13 @@ int main(int argc, char** argv) {
         return status != 0 && *check_app ? tessera::cli::kCheckUsageError : status;
     }
     try {
+        if (!max_memory.empty()) tessera::io::set_memory_budget(tessera::io::parse_byte_size(max_memory));
+        tessera::set_external_uris_allowed(allow_external_uris);
         if (*bench_app) return tessera::cli::run_bench(bench);
         if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
         if (*check_app) return tessera::cli::run_check(check);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        std::fprintf(stderr, "tessera: error: %s\n", tessera::io::error_sentence(e).c_str());
         return 1;
     }
     return 1;

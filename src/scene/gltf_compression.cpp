@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
+#include "io/memory_budget.hpp"
 #include "scene/draco_codec.hpp"
 #include "scene/gltf_accessors.hpp"
 #include "scene/gltf_geometry.hpp"
@@ -227,6 +228,11 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
         fail(source, what + " is too short: " + std::to_string(length) + " bytes cannot hold " +
                          std::to_string(count) + " elements of " + std::to_string(stride) + " bytes");
 
+    try {
+        io::check_memory(decoded_size, what + " decoded");
+    } catch (const io::MemoryBudgetError& e) {
+        fail(source, e.what());
+    }
     std::vector<unsigned char> decoded(decoded_size);
     int status = 0;
     if (mode == "ATTRIBUTES") status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, length);

@@ -4,6 +4,8 @@
 #include "scene/gltf_import.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,9 @@
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
+#include "io/input_file.hpp"
+#include "io/memory_budget.hpp"
+#include "io/nesting_depth.hpp"
 #include "scene/gltf_animation.hpp"
 #include "scene/gltf_compression.hpp"
 #include "scene/gltf_extensions.hpp"
@@ -63,30 +68,73 @@ std::string indexed(const char* array, std::size_t index, const std::string& nam
 
 // ---- Reading the file with tinygltf -------------------------------------------------------------
 
-// What tinygltf's callbacks need: the model being filled (for image buffer views)
-// and whether files may be read.
+// What tinygltf's callbacks need: the model being filled (for image buffer views),
+// whether files may be read, and from where.
 struct LoadContext {
     const tinygltf::Model* model = nullptr;
     bool read_external_files = true;
+    bool allow_external_uris = false;
+    std::string base;         // the folder as given to tinygltf, which joins it and a URI with '/'
+    fs::path folder;          // the same, canonical: every file read must resolve inside it
+    std::string refusal;      // the first URI refused, why (reported even where tinygltf only warns)
 };
 
+// What a glTF file may hold whole (the format's 4 GB limit) within the memory budget.
+std::uint64_t max_gltf_bytes() { return std::min<std::uint64_t>(io::memory_budget(), 0xFFFFFFFFull); }
+
 // The whole file in one read of its size (a byte-wise istreambuf_iterator copy
-// took 0.3 s per 2048² PNG of BoomBox on this machine). False if it cannot be read.
-bool read_file_bytes(const fs::path& path, std::vector<unsigned char>& bytes) {
-    std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file) return false;
-    const std::streamoff size = file.tellg();
-    if (size < 0) return false;
-    file.seekg(0, std::ios::beg);
-    bytes.resize(static_cast<std::size_t>(size));
-    file.read(reinterpret_cast<char*>(bytes.data()), size);
-    return file.gcount() == size;
+// took 0.3 s per 2048² PNG of BoomBox on this machine); FIFOs, devices and files
+// over the limit are refused before reading (io::InputFileError).
+void read_file_bytes(const fs::path& path, std::vector<unsigned char>& bytes, std::string_view kind) {
+    bytes = io::read_input_file(path, max_gltf_bytes(), kind);
+}
+
+// Why tinygltf's `path` (base + '/' + the percent-decoded URI, or "./" + URI as its
+// fallback) must not be read, or "" if it may.
+std::string uri_refusal(const std::string& path, const LoadContext& context) {
+    const std::string prefix = context.base.back() == '/' ? context.base : context.base + "/";
+    if (path.compare(0, prefix.size(), prefix) != 0) return "-";  // tinygltf's "." fallback: never
+    const std::string uri = path.substr(prefix.size());
+    const auto refuse = [&](const std::string& why) {
+        return "the URI " + quoted(uri) + " " + why + "; only files inside the model's folder " +
+               quoted(context.folder.string()) +
+               " are read (--allow-external-uris, or allow_external_uris = true in the scene's [[models]] entry, "
+               "allows others)";
+    };
+    if (uri.empty()) return "-";
+    if (uri.front() == '/' || uri.front() == '\\') return refuse("is an absolute path");
+    const std::size_t colon = uri.find(':');
+    if (colon != std::string::npos && colon > 0 && uri.find('/') > colon &&
+        std::all_of(uri.begin(), uri.begin() + std::ptrdiff_t(colon),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.'; }))
+        return "the URI " + quoted(uri) + " has a scheme (" + uri.substr(0, colon) +
+               ":); only relative file paths and data: URIs are read";
+    const fs::path relative = fs::path(uri).lexically_normal();
+    if (!relative.empty() && *relative.begin() == "..") return refuse("leaves the model's folder");
+    std::error_code error;
+    const fs::path resolved = fs::weakly_canonical(context.folder / relative, error);
+    if (!error) {
+        const fs::path inside = resolved.lexically_relative(context.folder);
+        if (inside.empty() || *inside.begin() == "..")
+            return refuse("resolves (through a symbolic link) outside the model's folder");
+    }
+    return "";
 }
 
 bool file_exists(const std::string& path, void* user) {
-    if (!static_cast<LoadContext*>(user)->read_external_files) return false;
+    auto* context = static_cast<LoadContext*>(user);
+    if (!context->read_external_files) return false;
+    if (!context->allow_external_uris) {
+        const std::string why = uri_refusal(path, *context);
+        if (why == "-") return false;
+        if (!why.empty()) {
+            if (context->refusal.empty()) context->refusal = why;
+            return false;
+        }
+    }
+    // A FIFO or device exists too: read_whole_file refuses it by name (io/input_file.hpp), saying so.
     std::error_code error;
-    return fs::is_regular_file(path, error);  // not a folder, fifo or device: those could block or never end
+    return fs::exists(path, error);
 }
 
 std::string expand_nothing(const std::string& path, void*) { return path; }
@@ -96,8 +144,10 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
         if (err) *err += "not a readable file";
         return false;
     }
-    if (!read_file_bytes(path, *out)) {
-        if (err) *err += "cannot read";
+    try {
+        read_file_bytes(path, *out, "glTF buffer or image");
+    } catch (const std::exception& e) {  // io::InputFileError, or no memory for it
+        if (err) *err += e.what();
         return false;
     }
     return true;
@@ -134,17 +184,77 @@ bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* er
     return true;
 }
 
+// What tinygltf would not check, or not survive: a GLB of another version
+// than 2, and JSON nested so deep that nlohmann's recursive parser overflows
+// the stack (the GLB's JSON chunk alike).
+void check_json_before_parsing(std::span<const std::uint8_t> bytes, bool binary, const std::string& source) {
+    std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (binary) {
+        const auto u32 = [&](std::size_t at) {
+            std::uint32_t v = 0;
+            std::memcpy(&v, bytes.data() + at, 4);
+            return v;
+        };
+        if (bytes.size() < 20) fail(source, "invalid glTF binary (.glb): " + std::to_string(bytes.size()) +
+                                                " bytes, shorter than its 12-byte header and a chunk header");
+        if (u32(4) != 2)
+            fail(source, "invalid glTF binary (.glb): version " + std::to_string(u32(4)) + ", expected 2");
+        const std::size_t length = std::min<std::size_t>(u32(12), bytes.size() - 20);
+        json = json.substr(20, length);
+    }
+    // tinygltf reads these as unsigned and, given a negative number, silently keeps 0.
+    for (const char* key : {"\"byteOffset\"", "\"byteLength\"", "\"byteStride\""}) {
+        for (std::size_t at = json.find(key); at != std::string_view::npos; at = json.find(key, at + 1)) {
+            std::size_t i = at + std::strlen(key);
+            while (i < json.size() && (json[i] == ' ' || json[i] == '\t' || json[i] == '\n' || json[i] == '\r')) ++i;
+            if (i >= json.size() || json[i] != ':') continue;
+            for (++i; i < json.size() && (json[i] == ' ' || json[i] == '\t' || json[i] == '\n' || json[i] == '\r');) ++i;
+            if (i < json.size() && json[i] == '-') {
+                const std::size_t line = 1 + std::size_t(std::count(json.begin(), json.begin() + std::ptrdiff_t(at), '\n'));
+                fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(line) + ": " +
+                                 std::string(key) + " is negative; offsets, lengths and strides are >= 0");
+            }
+        }
+    }
+    // Morph weights are numbers; tinygltf drops an array holding a string ("NaN") without a word.
+    for (std::size_t at = json.find("\"weights\""); at != std::string_view::npos; at = json.find("\"weights\"", at + 1)) {
+        std::size_t i = at + 9;
+        while (i < json.size() && std::isspace(static_cast<unsigned char>(json[i]))) ++i;
+        if (i >= json.size() || json[i] != ':') continue;
+        for (++i; i < json.size() && std::isspace(static_cast<unsigned char>(json[i]));) ++i;
+        if (i >= json.size() || json[i] != '[') continue;
+        const std::size_t end = json.find(']', i);
+        const std::string_view values = json.substr(i + 1, end == std::string_view::npos ? end : end - i - 1);
+        if (values.find_first_of("\"[{tfn") != std::string_view::npos) {
+            const std::size_t line = 1 + std::size_t(std::count(json.begin(), json.begin() + std::ptrdiff_t(at), '\n'));
+            fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(line) +
+                             ": \"weights\" holds something other than numbers (" +
+                             std::string(values.substr(0, 24)) + "); morph weights are finite numbers");
+        }
+    }
+    const io::Depth depth = io::json_nesting_depth(json, io::kMaxJsonDepth);
+    if (depth.line != 0)
+        fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(depth.line) +
+                         ": JSON nested deeper than " + std::to_string(io::kMaxJsonDepth) +
+                         " levels (arrays and objects, e.g. in extras); refused before parsing");
+}
+
 tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::string& source, const fs::path& base_dir,
                             const GltfReadOptions& options) {
     if (bytes.size() > std::numeric_limits<unsigned int>::max())
         fail(source, "file of " + std::to_string(bytes.size()) + " bytes is larger than glTF's 4 GB limit");
     tinygltf::Model model;
-    LoadContext context{&model, options.read_external_files};
+    LoadContext context{&model, options.read_external_files, options.allow_external_uris,
+                        base_dir.empty() ? std::string(".") : base_dir.string(), {}, {}};
+    std::error_code canonical_error;
+    context.folder = fs::weakly_canonical(context.base, canonical_error);
+    if (canonical_error) context.folder = fs::absolute(context.base).lexically_normal();
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_encoded_image, &context);
     loader.SetFsCallbacks({file_exists, expand_nothing, read_whole_file, write_nothing, &context});
     std::string err, warn;
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    check_json_before_parsing(bytes, binary, source);
     // Meshopt fallback buffers and Draco indices, which tinygltf would refuse (gltf_compression.hpp).
     const gltf::ParseInput input = gltf::prepare_for_tinygltf(bytes, binary);
     if (!input.bytes.empty()) bytes = input.bytes;
@@ -153,12 +263,13 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
     bool loaded = false;
     try {
         loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()),
-                                                      base_dir.string())
+                                                      context.base)
                         : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                                     unsigned(bytes.size()), base_dir.string());
+                                                     unsigned(bytes.size()), context.base);
     } catch (const std::exception& e) {
         err = e.what();
     }
+    if (!context.refusal.empty()) fail(source, context.refusal);
     if (!loaded) {
         std::string message = (binary ? "invalid glTF binary (.glb): " : "invalid glTF: ") + one_line(err);
         if (err.find("File not found") != std::string::npos || err.find("File read error") != std::string::npos)
@@ -259,7 +370,43 @@ private:
 
     // Depth first, in node order; a node reached twice means the graph is not a
     // forest (a cycle, or a shared child), which glTF forbids.
+    // glTF's nodes form a forest: each node the child of at most one node, no
+    // cycles. Checked over every node, not only those a scene reaches: a file
+    // whose nodes all sit in cycles has no roots, and drew nothing.
+    void check_node_forest() const {
+        const std::size_t count = model_.nodes.size();
+        std::vector<int> parent(count, -1);
+        for (std::size_t n = 0; n < count; ++n)
+            for (const int child : model_.nodes[n].children) {
+                if (child < 0 || std::size_t(child) >= count)
+                    fail(indexed("nodes", n, model_.nodes[n].name) + " has child " + std::to_string(child) +
+                         " but the file has " + std::to_string(count) + " nodes");
+                if (parent[std::size_t(child)] >= 0)
+                    fail(indexed("nodes", std::size_t(child), model_.nodes[std::size_t(child)].name) +
+                         " is a child of both nodes " + std::to_string(parent[std::size_t(child)]) + " and " +
+                         std::to_string(n) + "; glTF nodes form a forest (one parent at most)");
+                parent[std::size_t(child)] = int(n);
+            }
+        // With one parent each, a node is in a cycle exactly when following parents never ends at a root.
+        std::vector<char> state(count, 0);  // 0 unknown, 1 on the current path, 2 reaches a root
+        for (std::size_t n = 0; n < count; ++n) {
+            std::vector<std::size_t> path;
+            std::size_t at = n;
+            while (state[at] == 0) {
+                state[at] = 1;
+                path.push_back(at);
+                if (parent[at] < 0) break;
+                at = std::size_t(parent[at]);
+            }
+            if (state[at] == 1 && parent[at] >= 0)
+                fail(indexed("nodes", at, model_.nodes[at].name) +
+                     " is its own ancestor (a cycle of children); glTF nodes form a forest");
+            for (const std::size_t p : path) state[p] = 2;
+        }
+    }
+
     void walk_nodes() {
+        check_node_forest();
         std::vector<bool> visited(model_.nodes.size(), false);
         struct Pending {
             int node;
@@ -307,9 +454,39 @@ private:
         if (gltf::node_deforms_mesh(model_, node)) own = convert_mesh(mesh_index);
         else if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
         for (const PlacedPrimitive& primitive : gltf::node_deforms_mesh(model_, node) ? own : converted->second) {
+            try {  // an object and its node: ~100 bytes, but 10^5 nodes x 10^5 primitives add up
+                tally_.add(sizeof(Object) + sizeof(int), node_label + "'s objects");
+            } catch (const io::MemoryBudgetError& e) {
+                fail(e.what());
+            }
             object_nodes_.push_back(node);
             content_.objects.push_back(Object{primitive.mesh, primitive.material, world});
             content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world));
+        }
+    }
+
+    // What a primitive expands to, from its accessors' counts, before it is read:
+    // one accessor shared by 10^5 primitives, morph targets or skinned copies
+    // otherwise grows to gigabytes (io/memory_budget.hpp).
+    void tally_primitive(const tinygltf::Primitive& primitive, const std::string& label) {
+        const auto count_of = [&](int accessor) -> std::uint64_t {
+            if (accessor < 0 || std::size_t(accessor) >= model_.accessors.size()) return 0;
+            return std::uint64_t(model_.accessors[std::size_t(accessor)].count);
+        };
+        std::uint64_t vertices = 0;
+        if (const auto it = primitive.attributes.find("POSITION"); it != primitive.attributes.end())
+            vertices = count_of(it->second);
+        const std::uint64_t indices = primitive.indices >= 0 ? count_of(primitive.indices) : vertices;
+        // A vertex: position, normal, uv, tangent, colour and its source (~80 bytes); a morph
+        // target keeps position, normal and tangent offsets per vertex (36 bytes).
+        std::uint64_t bytes = io::saturating_add(io::saturating_mul(vertices, 80), io::saturating_mul(indices, 4));
+        bytes = io::saturating_add(bytes, io::saturating_mul(io::saturating_mul(vertices, 36),
+                                                             std::uint64_t(primitive.targets.size())));
+        try {
+            tally_.add(bytes, label + " (" + std::to_string(vertices) + " vertices, " +
+                                  std::to_string(primitive.targets.size()) + " morph targets)");
+        } catch (const io::MemoryBudgetError& e) {
+            fail(e.what());
         }
     }
 
@@ -318,6 +495,7 @@ private:
         std::vector<PlacedPrimitive> placed;
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const std::string label = indexed("meshes", std::size_t(mesh_index), mesh.name) + " primitives[" + std::to_string(p) + "]";
+            tally_primitive(mesh.primitives[p], label);
             const gltf::UvMapping uv_mapping = uv_mapping_of(mesh.primitives[p].material);
             gltf::PrimitiveMesh converted =
                 gltf::read_primitive(model_, mesh.primitives[p], source_, label, uv_mapping.set);
@@ -509,6 +687,7 @@ private:
     const tinygltf::Model& model_;
     std::string source_;
     fs::path base_dir_;
+    io::MemoryTally tally_;  // what the model's meshes and objects expand to, against --max-memory
     GltfReadOptions options_;
     GltfContent content_;
     std::string node_name_;  // of the node being walked
@@ -523,6 +702,13 @@ private:
 };
 
 }  // namespace
+
+namespace {
+std::atomic<bool> g_external_uris_allowed{false};
+}  // namespace
+
+bool external_uris_allowed() { return g_external_uris_allowed.load(std::memory_order_relaxed); }
+void set_external_uris_allowed(bool allowed) { g_external_uris_allowed.store(allowed, std::memory_order_relaxed); }
 
 GltfImportTimes& gltf_import_times() {
     static GltfImportTimes times;
@@ -543,15 +729,17 @@ GltfContent import_gltf(std::span<const std::uint8_t> bytes, const std::string& 
     return GltfReader(model, source, base_dir, options).read();
 }
 
-GltfContent import_gltf_file(const fs::path& path) {
+GltfContent import_gltf_file(const fs::path& path, const GltfReadOptions& options) {
     const std::string source = path.string();
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) fail(source, "cannot open glTF file");
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::uint8_t> bytes;
-    if (!read_file_bytes(path, bytes)) fail(source, "cannot read glTF file");
+    try {
+        read_file_bytes(path, bytes, "glTF file");
+    } catch (const io::InputFileError& e) {
+        fail(source, e.reason());
+    }
     gltf_import_times().file_read_ns += nanoseconds_since(start);
-    GltfContent content = import_gltf(bytes, source, path.parent_path());
+    GltfContent content = import_gltf(bytes, source, path.parent_path(), options);
     for (const std::string& warning : content.warnings)
         std::fprintf(stderr, "tessera: warning: %s: %s\n", source.c_str(), warning.c_str());
     return content;

@@ -111,15 +111,28 @@ struct GltfContent {
     std::shared_ptr<const GltfRig> rig;
 };
 
+bool external_uris_allowed();
+
 struct GltfReadOptions {
     // Whether external buffers and images (URIs naming files) are read, relative
     // to base_dir. Off for the fuzzer, which must not read the machine's files.
     bool read_external_files = true;
+    // Whether a URI may name a file outside the model's folder: an absolute
+    // path, a ../ traversal (also percent-encoded), or a symbolic link leading
+    // out. Refused by default, so a model file cannot make us read (and draw)
+    // the machine's other files; data: URIs are always allowed, other schemes
+    // (file://, http://) never. Default: external_uris_allowed().
+    bool allow_external_uris = external_uris_allowed();
 };
+
+// The process's default for GltfReadOptions::allow_external_uris: false until
+// the CLI's --allow-external-uris sets it.
+bool external_uris_allowed();
+void set_external_uris_allowed(bool allowed);
 
 // Reads a .gltf or .glb file (told apart by the "glTF" magic, not the name),
 // printing each warning to stderr as "tessera: warning: FILE: ...".
-GltfContent import_gltf_file(const std::filesystem::path& path);
+GltfContent import_gltf_file(const std::filesystem::path& path, const GltfReadOptions& options = {});
 
 // Wall time of glTF imports in this process, for `tessera render --stats`
 // (texture::build_times() splits the image stage by thread time).

@@ -22,7 +22,9 @@ public:
     // told apart by their canonical path. Throws what import_gltf_file throws;
     // a file that failed is not remembered (the next call tries again).
     // Safe to call from several threads (one import at a time).
-    std::shared_ptr<const GltfContent> load(const std::filesystem::path& path);
+    // allow_external_uris: a scene's [[models]] key (GltfReadOptions); a file is
+    // cached once per setting.
+    std::shared_ptr<const GltfContent> load(const std::filesystem::path& path, bool allow_external_uris = false);
 
     // Files imported so far; a call answered from the cache does not count.
     std::size_t imports() const;

@@ -39,6 +39,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
 
+#include "io/input_file.hpp"
+#include "io/nesting_depth.hpp"
 #include "scene/animation_eval.hpp"
 #include "scene/animation_file.hpp"
 #include "scene/gltf_animation.hpp"
@@ -463,7 +465,7 @@ private:
             const std::string name = "models[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*models.get(i), name);
             check_keys(table, name, {"file", "translate", "rotate", "scale", "lights", "animation", "animation_start",
-                                     "animation_speed", "animation_loop"});
+                                     "animation_speed", "animation_loop", "allow_external_uris"});
             const toml::node& file_node = require(table, "file", name);
             const std::filesystem::path file = base_dir_ / read_string(file_node, child(name, "file"));
             if (!is_gltf_path(file)) {
@@ -472,10 +474,14 @@ private:
             }
             bool with_lights = true;
             if (const toml::node* n = table.get("lights")) with_lights = read_bool(*n, child(name, "lights"));
+            // Whether the model's URIs may name files outside its folder (GltfReadOptions).
+            bool allow_external_uris = false;
+            if (const toml::node* n = table.get("allow_external_uris"))
+                allow_external_uris = read_bool(*n, child(name, "allow_external_uris"));
             const glm::mat4 placement = read_placement(table, name);
             std::shared_ptr<const GltfContent> content;
             try {
-                content = (models_ ? *models_ : own_models_).load(file);
+                content = (models_ ? *models_ : own_models_).load(file, allow_external_uris);
             } catch (const SceneError& error) {
                 fail_at(file_node.source(), "in '" + child(name, "file") + "': " + error.what());
             }
@@ -548,9 +554,17 @@ float auto_light_range(const glm::vec3& color) {
 
 namespace {
 
+// A scene file is a page of TOML; its meshes and textures are other files.
+constexpr std::uint64_t kMaxSceneFileBytes = 64ull << 20;
+
 Scene parse_scene_with(std::string_view toml_text, std::string_view source_name, ModelCache* models) {
     const std::string source(source_name);
     toml::table root;
+    try {
+        io::check_toml_depth(toml_text, io::kMaxTomlDepth, source);  // toml++ recurses per level
+    } catch (const std::runtime_error& e) {
+        throw SceneError(e.what());
+    }
     try {
         root = toml::parse(toml_text, source_name);
     } catch (const toml::parse_error& error) {
@@ -569,15 +583,13 @@ Scene load_scene_with(const std::filesystem::path& path, ModelCache* models, con
         return make_gltf_scene(models ? *models->load(path) : import_gltf_file(path), name, gltf_camera);
     if (!gltf_camera.empty())
         throw SceneError(name + ": --camera selects a glTF file's camera; a TOML scene has its own [camera]");
-    std::error_code ignored;
-    std::ifstream file(path, std::ios::binary);
-    if (!file || std::filesystem::is_directory(path, ignored)) {
-        throw SceneError(name + ": cannot open scene file");
+    std::string text;
+    try {
+        text = io::read_input_text(path, kMaxSceneFileBytes, "scene file");
+    } catch (const io::InputFileError& e) {
+        throw SceneError(e.what());
     }
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) throw SceneError(name + ": cannot read scene file");
-    return parse_scene_with(text.str(), name, models);
+    return parse_scene_with(text, name, models);
 }
 
 }  // namespace

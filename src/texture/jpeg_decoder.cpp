@@ -114,6 +114,15 @@ void decode_jpeg(std::span<const std::uint8_t> bytes, const Level0Allocator& all
         (layout == JpegLayout::rgba && components != 4))
         throw ImageDecodeError(true, "unsupported JPEG colour space (" + std::to_string(d.cinfo.num_components) +
                                          " components)");
+    // Every 8x8 block of the first component costs at least one bit even in a
+    // progressive file (its DC scan); fewer bytes mean the data is missing and
+    // libjpeg would pad it out (a 32x32 file claiming 16384^2 decoded to 1 GB).
+    const std::uint64_t blocks = (std::uint64_t(width) + 7) / 8 * ((std::uint64_t(height) + 7) / 8);
+    if (blocks / 8 > bytes.size())
+        throw ImageDecodeError(true, "the header claims " + std::to_string(width) + "x" + std::to_string(height) +
+                                         ", which needs at least " + std::to_string(blocks / 8) +
+                                         " bytes of JPEG data (a bit per 8x8 block); the file has " +
+                                         std::to_string(bytes.size()));
     std::uint32_t* const level0 = allocate(width, height);
 
     if (layout == JpegLayout::rgba) {

@@ -146,6 +146,23 @@ struct PngReadStruct {
     ~PngReadStruct() { png_destroy_read_struct(&png, info ? &info : nullptr, nullptr); }
 };
 
+// A small file whose header claims a huge image is refused before level 0 is
+// allocated: deflate expands at most 1032:1, so the rows (a filter byte each,
+// at the file's own bit depth) cannot be more than ~1032 times the file.
+void check_png_data_present(std::span<const std::uint8_t> bytes, png_uint_32 width, png_uint_32 height) {
+    if (bytes.size() < 26) return;  // libpng read the header, so it is there
+    const int bit_depth = bytes[24];
+    const int channels = bytes[25] == 2 ? 3 : bytes[25] == 4 ? 2 : bytes[25] == 6 ? 4 : 1;
+    const std::uint64_t row_bits = std::uint64_t(width) * std::uint64_t(channels) * std::uint64_t(bit_depth);
+    const std::uint64_t rows = std::uint64_t(height) * (1 + (row_bits + 7) / 8);
+    constexpr std::uint64_t kMaxDeflateRatio = 1032;
+    const std::uint64_t needed = rows / kMaxDeflateRatio;
+    if (needed > bytes.size())
+        throw ImageDecodeError(true, "the header claims " + std::to_string(width) + "x" + std::to_string(height) +
+                                         ", which needs at least " + std::to_string(needed) +
+                                         " bytes of compressed data; the file has " + std::to_string(bytes.size()));
+}
+
 }  // namespace
 
 std::uint8_t unorm16_to_unorm8(std::uint16_t value) {
@@ -182,6 +199,7 @@ void decode_png(std::span<const std::uint8_t> bytes, PngAlpha alpha, const Level
         row_bytes != std::size_t(header.width) * std::size_t(header.channels) * sample_bytes)
         throw ImageDecodeError(true, "unsupported PNG layout (" + std::to_string(header.channels) + " channels of " +
                                          std::to_string(header.bit_depth) + " bits)");
+    check_png_data_present(bytes, header.width, header.height);
     std::uint32_t* const level0 = allocate(width, height);
     const bool associate = alpha == PngAlpha::associated && header.has_alpha;
 

@@ -4,6 +4,7 @@
 #include "texture/texture.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cctype>
@@ -24,6 +25,8 @@
 
 #include <sys/mman.h>
 
+#include "io/input_file.hpp"
+#include "io/memory_budget.hpp"
 #include "simd/lane_padding.hpp"
 #include "texture/image_decoders.hpp"
 #include "texture/oiio_module_loader.hpp"
@@ -58,6 +61,13 @@ void check_size(const std::string& source, long long width, long long height) {
     if (width > kMaxTextureSize || height > kMaxTextureSize)
         fail(source, "size " + std::to_string(width) + "x" + std::to_string(height) + " is above the limit of " +
                          std::to_string(kMaxTextureSize) + " per side");
+    // Level 0 and its mips (4/3 of it), RGBA8, before any is allocated.
+    try {
+        io::check_memory(std::uint64_t(width) * std::uint64_t(height) * 4 * 4 / 3,
+                         "a " + std::to_string(width) + "x" + std::to_string(height) + " texture with its mips");
+    } catch (const io::MemoryBudgetError& e) {
+        fail(source, e.what());
+    }
 }
 
 // min(hi, max(lo, x)) in this operand order: std::max returns its first
@@ -222,7 +232,13 @@ std::uint32_t* allocate_texels(std::size_t count) {
 
 }  // namespace
 
-void Texture::FreeTexels::operator()(std::uint32_t* texels) const { std::free(texels); }
+// Bytes of texels in every live texture of the process (six 16384² maps are 8.6 GB).
+std::atomic<std::uint64_t> g_live_texel_bytes{0};
+
+void Texture::FreeTexels::operator()(std::uint32_t* texels) const {
+    std::free(texels);
+    g_live_texel_bytes.fetch_sub(bytes, std::memory_order_relaxed);
+}
 
 void Texture::allocate(int width, int height, ColorSpace color_space) {
     color_space_ = color_space;
@@ -235,7 +251,20 @@ void Texture::allocate(int width, int height, ColorSpace color_space) {
     }
     // Every level's room at once, uninitialised (every texel is written next);
     // the pages are touched by the threads that fill them.
-    texels_.reset(allocate_texels(offset));
+    const std::uint64_t bytes = std::uint64_t(offset) * sizeof(std::uint32_t);
+    const std::uint64_t live = g_live_texel_bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (live > io::memory_budget()) {
+        g_live_texel_bytes.fetch_sub(bytes, std::memory_order_relaxed);
+        io::check_memory(live, "this " + std::to_string(width) + "x" + std::to_string(height) +
+                                   " texture with every other one loaded");
+    }
+    texels_.reset();
+    try {
+        texels_ = std::unique_ptr<std::uint32_t[], FreeTexels>(allocate_texels(offset), FreeTexels{bytes});
+    } catch (...) {
+        g_live_texel_bytes.fetch_sub(bytes, std::memory_order_relaxed);
+        throw;
+    }
     texel_count_ = offset;
     for (std::size_t i = 0; i < levels_.size(); ++i) {
         width_table_[i] = levels_[i].width;
@@ -311,7 +340,11 @@ Texture ImageDecoder::decode_bytes(std::span<const std::uint8_t> bytes, const st
     Texture texture;
     const Level0Allocator allocate = [&](int width, int height) {
         check_size(source, width, height);
-        texture.allocate(width, height, color_space);
+        try {
+            texture.allocate(width, height, color_space);
+        } catch (const io::MemoryBudgetError& e) {
+            fail(source, e.what());
+        }
         return texture.texels_.get();
     };
     // Decoding writes RGBA8 straight into level 0: there is no separate upload.
@@ -341,6 +374,7 @@ struct ModuleSink {
     int channels = 0;
     std::exception_ptr failure;
     std::int64_t upload_ns = 0;
+    std::uint64_t file_bytes = 0;  // what the header's size must be possible from
 };
 
 }  // namespace
@@ -349,14 +383,30 @@ Texture ImageDecoder::decode_with_module(const std::filesystem::path& path, cons
                                          ColorSpace color_space) {
     const TesseraReadImage read_image = oiio_module_reader(source);
     Texture texture;
-    ModuleSink sink_state{&source, color_space, &texture, nullptr, 0, 0, nullptr, 0};
+    ModuleSink sink_state{&source, color_space, &texture, nullptr, 0, 0, nullptr, 0, 0};
+    try {
+        sink_state.file_bytes = io::check_input_file(path, io::memory_budget(), "texture");
+    } catch (const io::InputFileError& e) {
+        fail(source, e.reason());
+    }
     const auto begin = [](void* context, int width, int height, int depth, int channels) -> int {
         auto* s = static_cast<ModuleSink*>(context);
         try {
             check_size(*s->source, width, height);
+            try {
+                io::check_decoded_size(s->file_bytes, std::uint64_t(width) * std::uint64_t(height) *
+                                                          std::uint64_t(std::max(channels, 1)),
+                                       "a " + std::to_string(width) + "x" + std::to_string(height) + " image");
+            } catch (const io::MemoryBudgetError& e) {
+                fail(*s->source, e.what());
+            }
             if (depth > 1) fail(*s->source, "volume images are not supported (depth " + std::to_string(depth) + ")");
             if (channels < 1) fail(*s->source, "no channels");
-            s->texture->allocate(width, height, s->color_space);
+            try {
+                s->texture->allocate(width, height, s->color_space);
+            } catch (const io::MemoryBudgetError& e) {
+                fail(*s->source, e.what());
+            }
             s->level0 = s->texture->texels_.get();
             s->width = width;
             s->channels = std::min(channels, 4);
@@ -398,44 +448,41 @@ bool has_extension(const std::filesystem::path& path, std::initializer_list<cons
     return false;
 }
 
-// The whole file, or its first `limit` bytes.
+// The whole file (at most max_bytes), or its first `prefix` bytes; a FIFO or device is refused by name.
 std::vector<std::uint8_t> read_bytes(const std::filesystem::path& path, const std::string& source,
-                                     std::size_t limit = std::size_t(-1)) {
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (!file) fail(source, std::string("cannot read image: cannot open the file: ") + std::strerror(errno));
-    std::vector<std::uint8_t> bytes;
-    std::uint8_t chunk[65536];
-    while (bytes.size() < limit) {
-        const std::size_t want = std::min(sizeof chunk, limit - bytes.size());
-        const std::size_t got = std::fread(chunk, 1, want, file);
-        bytes.insert(bytes.end(), chunk, chunk + got);
-        if (got < want) break;
+                                     std::uint64_t max_bytes, std::size_t prefix = std::size_t(-1)) {
+    try {
+        if (prefix != std::size_t(-1)) return io::read_input_prefix(path, prefix, "texture");
+        return io::read_input_file(path, max_bytes, "texture");
+    } catch (const io::InputFileError& e) {
+        fail(source, e.reason());
     }
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed) fail(source, "cannot read image: read error");
-    return bytes;
 }
 
 }  // namespace
 
 Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space) {
     const std::string source = "texture " + quoted(path);
-    std::error_code error;
-    if (!std::filesystem::exists(path, error)) fail(source, "file not found");
-    if (!std::filesystem::is_regular_file(path, error)) fail(source, "not a regular file");
-    if (std::filesystem::file_size(path, error) == 0 && !error) fail(source, "empty file (0 bytes)");
+    // An encoded image is smaller than the texels it decodes to, which the budget bounds.
+    const std::uint64_t max_bytes = io::memory_budget();
+    std::uint64_t size = 0;
+    try {
+        size = io::check_input_file(path, max_bytes, "texture");
+    } catch (const io::InputFileError& e) {
+        fail(source, e.reason());
+    }
+    if (size == 0) fail(source, "empty file (0 bytes)");
 
     // The format is told by the bytes; a .png or .jpg file that is neither is
     // refused here, anything else goes to OpenImageIO.
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<std::uint8_t> signature = read_bytes(path, source, 8);
+    const std::vector<std::uint8_t> signature = read_bytes(path, source, max_bytes, 8);
     if (!has_png_signature(signature) && !has_jpeg_signature(signature)) {
         if (has_extension(path, {".png", ".jpg", ".jpeg"}))
             fail(source, "cannot read image: neither a PNG nor a JPEG file (bad signature)");
         return ImageDecoder::decode_with_module(path, source, color_space);
     }
-    const std::vector<std::uint8_t> bytes = read_bytes(path, source);
+    const std::vector<std::uint8_t> bytes = read_bytes(path, source, max_bytes);
     build_times().decode_ns += nanoseconds_since(start);
     // Straight (unassociated) alpha as stored.
     return ImageDecoder::decode_bytes(bytes, source, color_space, PngAlpha::straight, "cannot read image");

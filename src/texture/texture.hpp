@@ -162,7 +162,8 @@ public:
 private:
     Texture() = default;
     friend struct ImageDecoder;  // texture.cpp: decodes an image file into level 0
-    // Sizes every level and allocates the texels; level 0 is then filled.
+    // Sizes every level and allocates the texels; level 0 is then filled. Throws
+    // io::MemoryBudgetError when every live texture with this one would pass the budget.
     void allocate(int width, int height, ColorSpace color_space);
     void build_mip_chain();  // from level 0 in texels_
 
@@ -171,7 +172,10 @@ private:
     // All levels, RGBA8. Not a std::vector: its zero fill cost a memset of
     // 22 MB per 2048² map before the decoder and the mip filter wrote every
     // texel. Maps of 2 MiB and more are in transparent huge pages (texture.cpp).
+    // It gives the bytes back to the process's count of live texels, which
+    // allocate checks against the memory budget (io/memory_budget.hpp).
     struct FreeTexels {
+        std::size_t bytes;  // no initializer: a nested class's one would make it not default-constructible here
         void operator()(std::uint32_t* texels) const;
     };
     std::unique_ptr<std::uint32_t[], FreeTexels> texels_;

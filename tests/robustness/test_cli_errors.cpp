@@ -179,7 +179,7 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
     SUBCASE("a folder as the scene file") {
         const Run run = tessera_render(dir, {dir.string(), "-o", out});
         CHECK(run.status == 1);
-        CHECK(contains(run.err, "cannot open scene file"));
+        CHECK(contains(run.err, "cannot read scene file: it is a folder, not a regular file"));
     }
     SUBCASE("an unsupported output format") {
         const Run run = tessera_render(dir, {scene.string(), "-o", (dir / "out.jpg").string()});

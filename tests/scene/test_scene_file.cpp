@@ -219,11 +219,12 @@ TEST_CASE("scene errors: file and syntax") {
     SUBCASE("missing file") {
         const std::filesystem::path path = kSourceDir / "scenes" / "no_such_scene.toml";
         CHECK_THROWS_WITH_AS(tessera::load_scene_file(path),
-                             (path.string() + ": cannot open scene file").c_str(), SceneError);
+                             (path.string() + ": cannot open scene file: no such file").c_str(), SceneError);
     }
     SUBCASE("a directory is not a scene file") {
         CHECK_THROWS_WITH_AS(tessera::load_scene_file(kSourceDir / "scenes"),
-                             ((kSourceDir / "scenes").string() + ": cannot open scene file").c_str(),
+                             ((kSourceDir / "scenes").string() +
+                              ": cannot read scene file: it is a folder, not a regular file").c_str(),
                              SceneError);
     }
     SUBCASE("TOML syntax error, with file:line:col") {

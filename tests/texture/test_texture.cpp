@@ -423,7 +423,7 @@ TEST_CASE("texture: load reads PNG, decodes sRGB, keeps linear data") {
 TEST_CASE("texture: load errors name the path and the problem") {
     const std::filesystem::path dir = test::output_dir("texture");
 
-    check_load_error(dir / "no_such_texture.png", "not found");
+    check_load_error(dir / "no_such_texture.png", "cannot open texture: no such file");
 
     const std::filesystem::path empty = dir / "empty.png";
     std::ofstream(empty, std::ios::binary | std::ios::trunc).close();
