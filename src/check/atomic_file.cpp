@@ -57,12 +57,31 @@ void write_text_atomically(const fs::path& path, std::string_view text) {
 void write_png_atomically(const OIIO::ImageBuf& image, const fs::path& path) {
     make_parent(path);
     const fs::path tmp = temporary_path_for(path);
-    if (!image.write(tmp.string(), OIIO::TypeDesc::UINT8, "png")) {
+    // Every report image is display-referred: tagged sRGB (an sRGB chunk), whatever the buffer was read
+    // from. An EXR's "linear" tag would write gAMA 1.0, and browsers would show the preview washed out.
+    OIIO::ImageBuf tagged(image);
+    tagged.specmod().attribute("oiio:ColorSpace", "sRGB");
+    if (!tagged.write(tmp.string(), OIIO::TypeDesc::UINT8, "png")) {
         std::error_code ignored;
         fs::remove(tmp, ignored);
-        throw std::runtime_error(path.string() + ": cannot write image: " + image.geterror());
+        throw std::runtime_error(path.string() + ": cannot write image: " + tagged.geterror());
     }
     move_into_place(tmp, path);
+}
+
+void link_or_copy_file_atomically(const fs::path& from, const fs::path& to) {
+    make_parent(to);
+    const fs::path tmp = temporary_path_for(to);
+    std::error_code error;
+    fs::create_hard_link(from, tmp, error);
+    if (error) {  // another file system, or links not allowed: a copy
+        copy_file_atomically(from, to);
+        return;
+    }
+    move_into_place(tmp, to);
+    // rename() does nothing when both names are links to one file already (the same golden linked twice):
+    // then the temporary name is still there.
+    fs::remove(tmp, error);
 }
 
 void copy_file_atomically(const fs::path& from, const fs::path& to) {

@@ -19,19 +19,20 @@ bool is_inside(const fs::path& path, const fs::path& folder) {
     return !relative.empty() && *relative.begin() != "..";
 }
 
-// One report image link of a shard, as the merged report links it; an image
-// inside the shard's folder is copied to the same place under merged_dir.
+// One report image link of a shard, as the merged report links it: the image is
+// copied (or hard-linked) to the same place under merged_dir, so that the merged
+// folder works on its own. A link leading outside the shard's folder (reports
+// written before goldens were copied in) becomes images/<name>.golden.png.
 std::string merge_image(const std::string& link, const fs::path& shard_dir, const fs::path& merged_dir,
-                        const fs::path& summary) {
+                        const fs::path& summary, const std::string& name) {
     if (link.empty()) return link;
     const fs::path target = (shard_dir / link).lexically_normal();
     std::error_code error;
     if (!fs::is_regular_file(target, error))
         throw MergeError(summary.string() + ": the report image " + target.string() + " is missing");
-    if (!is_inside(target, shard_dir))  // e.g. a PNG golden linked because the render matched it
-        return target.lexically_relative(merged_dir).generic_string();
-    copy_file_atomically(target, merged_dir / link);
-    return link;
+    const std::string merged_link = is_inside(target, shard_dir) ? link : "images/" + name + ".golden.png";
+    link_or_copy_file_atomically(target, merged_dir / merged_link);
+    return merged_link;
 }
 
 }  // namespace
@@ -104,9 +105,9 @@ CheckRun merge_shard_reports(const std::vector<fs::path>& shard_dirs, const fs::
         const std::vector<std::size_t> items = batch::shard_items(part.run.suite_scenes, part.run.shard);
         for (std::size_t k = 0; k < items.size(); ++k) {
             SceneResult r = std::move(part.run.scenes[k]);
-            r.images.expected = merge_image(r.images.expected, part.dir, merged, part.summary);
-            r.images.actual = merge_image(r.images.actual, part.dir, merged, part.summary);
-            r.images.diff = merge_image(r.images.diff, part.dir, merged, part.summary);
+            r.images.expected = merge_image(r.images.expected, part.dir, merged, part.summary, r.name);
+            r.images.actual = merge_image(r.images.actual, part.dir, merged, part.summary, r.name);
+            r.images.diff = merge_image(r.images.diff, part.dir, merged, part.summary, r.name);
             merged_run.scenes[items[k]] = std::move(r);
         }
         merged_run.seconds += part.run.seconds;
