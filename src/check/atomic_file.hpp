@@ -12,7 +12,10 @@ namespace tessera::check {
 
 // Throws std::runtime_error (io::WriteError) naming the file.
 void write_text_atomically(const std::filesystem::path& path, std::string_view text);
-void write_png_atomically(const OIIO::ImageBuf& image, const std::filesystem::path& path);  // as 8-bit
+void write_png_atomically(const OIIO::ImageBuf& image, const std::filesystem::path& path);  // 8-bit, tagged sRGB
 void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);
+// A hard link where the file system allows one (cheap for a report's copies of
+// golden images, which are replaced by renaming, never rewritten), else a copy.
+void link_or_copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to);
 
 }  // namespace tessera::check

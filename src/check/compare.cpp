@@ -4,10 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "image/display_encoding.hpp"
 #include "io/input_file.hpp"
 #include "io/memory_budget.hpp"
 
@@ -49,6 +51,18 @@ std::string channel_list(const OIIO::ImageSpec& spec) {
         names += c < int(spec.channelnames.size()) ? spec.channelnames[c] : "?";
     }
     return names;
+}
+
+// `image` with the ignored pixels set to 0 (as float).
+OIIO::ImageBuf without_ignored(const OIIO::ImageBuf& image, const std::vector<std::uint8_t>& ignored) {
+    const OIIO::ImageSpec& spec = image.spec();
+    OIIO::ImageBuf out(OIIO::ImageSpec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT));
+    out.copy_pixels(image);
+    const std::vector<float> zero(std::size_t(spec.nchannels), 0.0f);
+    for (int y = 0; y < spec.height; ++y)
+        for (int x = 0; x < spec.width; ++x)
+            if (ignored[std::size_t(y) * spec.width + x]) out.setpixel(x, y, zero.data(), spec.nchannels);
+    return out;
 }
 
 }  // namespace
@@ -102,11 +116,11 @@ OIIO::ImageBuf read_golden(const std::filesystem::path& golden, int render_width
     return buffer;
 }
 
-Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, const Thresholds& thresholds,
-                          GoldenKind kind) {
+Comparison compare_images(const OIIO::ImageBuf& actual_in, const OIIO::ImageBuf& golden_in, const Thresholds& thresholds,
+                          GoldenKind kind, const std::vector<std::uint8_t>& ignored) {
     Comparison result;
-    const OIIO::ImageSpec& a = actual.spec();
-    const OIIO::ImageSpec& g = golden.spec();
+    const OIIO::ImageSpec& a = actual_in.spec();
+    const OIIO::ImageSpec& g = golden_in.spec();
     if (a.width != g.width || a.height != g.height) {
         result.reason = "size differs: golden " + std::to_string(g.width) + "x" + std::to_string(g.height) +
                         ", render " + std::to_string(a.width) + "x" + std::to_string(a.height);
@@ -122,6 +136,18 @@ Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& go
         return result;
     }
 
+    if (!ignored.empty() && ignored.size() != std::size_t(a.width) * std::size_t(a.height))
+        throw std::logic_error("compare_images: the ignore mask is not the image's size");
+    const std::int64_t ignored_count = std::count(ignored.begin(), ignored.end(), std::uint8_t(1));
+    // Ignored pixels made equal (0 in both), so that nothing is counted there.
+    OIIO::ImageBuf actual_masked, golden_masked;
+    if (ignored_count > 0) {
+        actual_masked = without_ignored(actual_in, ignored);
+        golden_masked = without_ignored(golden_in, ignored);
+    }
+    const OIIO::ImageBuf& actual = ignored_count > 0 ? actual_masked : actual_in;
+    const OIIO::ImageBuf& golden = ignored_count > 0 ? golden_masked : golden_in;
+
     const OIIO::ImageBufAlgo::CompareResults cmp =
         OIIO::ImageBufAlgo::compare(actual, golden, float(thresholds.fail), float(thresholds.warn),
                                     float(thresholds.fail_relative), float(thresholds.warn_relative));
@@ -131,7 +157,9 @@ Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& go
         return result;
     }
     Metrics& m = result.metrics;
-    m.pixels = std::int64_t(a.width) * a.height;
+    const std::int64_t all_pixels = std::int64_t(a.width) * a.height;
+    m.pixels = all_pixels - ignored_count;
+    m.ignored_pixels = ignored_count;
     m.max_error = cmp.maxerror;
     m.max_x = cmp.maxx;
     m.max_y = cmp.maxy;
@@ -139,6 +167,12 @@ Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& go
     m.mean_error = cmp.meanerror;
     m.rms_error = cmp.rms_error;
     m.psnr = cmp.PSNR;
+    if (ignored_count > 0) {  // OpenImageIO averaged over every pixel: over the compared ones instead
+        const double share = m.pixels > 0 ? double(all_pixels) / double(m.pixels) : 0.0;
+        m.mean_error *= share;
+        m.rms_error *= std::sqrt(share);
+        m.psnr = m.rms_error > 0 ? 20.0 * std::log10(1.0 / m.rms_error) : std::numeric_limits<double>::infinity();
+    }
     m.pixels_over_fail = std::int64_t(cmp.nfail);
     m.pixels_over_warn = std::int64_t(cmp.nwarn);  // OpenImageIO counts failing pixels here too
     if (thresholds.perceptual) {
@@ -187,20 +221,35 @@ double heat_map_scale(const Thresholds& thresholds, const Metrics& metrics) {
     return metrics.max_error > 0 ? metrics.max_error : 1.0;
 }
 
-OIIO::ImageBuf diff_heat_map(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, double scale) {
+OIIO::ImageBuf diff_heat_map(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, double scale,
+                             const std::vector<std::uint8_t>& ignored) {
     namespace algo = OIIO::ImageBufAlgo;
     const OIIO::ImageBuf largest = algo::maxchan(algo::absdiff(actual, golden));
     OIIO::ImageBuf normalized = algo::clamp(algo::mul(largest, float(1.0 / scale)), 0.0f, 1.0f);
     normalized = algo::pow(normalized, 0.5f);
-    return algo::color_map(normalized, 0, "inferno");
+    OIIO::ImageBuf map = algo::color_map(normalized, 0, "inferno");
+    const OIIO::ImageSpec& spec = map.spec();
+    if (ignored.size() == std::size_t(spec.width) * std::size_t(spec.height))
+        for (int y = 0; y < spec.height; ++y)
+            for (int x = 0; x < spec.width; ++x)
+                if (ignored[std::size_t(y) * spec.width + x]) map.setpixel(spec.x + x, spec.y + y, kIgnoredColor, 3);
+    return map;
 }
 
 OIIO::ImageBuf display_preview(const OIIO::ImageBuf& image, GoldenKind kind) {
-    namespace algo = OIIO::ImageBufAlgo;
     if (kind == GoldenKind::png) return image;
-    const OIIO::ImageBuf radiance = algo::max(image, 0.0f);  // NaN and negatives as black
-    const OIIO::ImageBuf reinhard = algo::div(radiance, algo::add(radiance, 1.0f));
-    return algo::pow(reinhard, float(1.0 / 2.2));
+    const OIIO::ImageSpec& spec = image.spec();
+    OIIO::ImageBuf display(OIIO::ImageSpec(spec.width, spec.height, 3, OIIO::TypeDesc::UINT8));
+    std::vector<float> pixel(std::size_t(std::max(spec.nchannels, 3)), 0.0f);
+    for (int y = 0; y < spec.height; ++y)
+        for (int x = 0; x < spec.width; ++x) {
+            image.getpixel(spec.x + x, spec.y + y, pixel.data(), int(pixel.size()));
+            float encoded[3];
+            for (int c = 0; c < 3; ++c)  // NaN and negatives as black, as the renderer's display image
+                encoded[c] = float(tessera::image::unorm8_from_radiance_reference(pixel[c] > 0.0f ? pixel[c] : 0.0f)) / 255.0f;
+            display.setpixel(x, y, encoded, 3);
+        }
+    return display;
 }
 
 }  // namespace tessera::check

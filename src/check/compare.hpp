@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <OpenImageIO/imagebuf.h>
 
@@ -21,7 +22,8 @@ GoldenKind golden_kind_for(const std::filesystem::path& golden);  // by extensio
 
 // The numbers of one comparison (ImageBufAlgo::compare's, plus Yee's count).
 struct Metrics {
-    std::int64_t pixels = 0;
+    std::int64_t pixels = 0;           // pixels compared (the image's, less the ignored ones)
+    std::int64_t ignored_pixels = 0;   // left out by the scene's ignore regions
     double max_error = 0;      // largest per-channel difference
     int max_x = 0, max_y = 0, max_channel = 0;  // where it is (row 0 at the top)
     double mean_error = 0;
@@ -52,18 +54,26 @@ OIIO::ImageBuf read_golden(const std::filesystem::path& golden, int render_width
 
 // Compares and classifies. Sizes or channels that differ are a failure with
 // the reason. `kind` says which units the thresholds are in (for messages).
+// `ignored` (check/ignore_regions.hpp: one byte per pixel, 1 = ignored; empty:
+// none) leaves pixels out: they count as equal, and ratios, mean, RMS and PSNR
+// are over the other pixels.
 Comparison compare_images(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, const Thresholds& thresholds,
-                          GoldenKind kind);
+                          GoldenKind kind, const std::vector<std::uint8_t>& ignored = {});
 
 // Heat map of |actual - golden| (largest channel) as 8-bit RGB, through the
 // "inferno" colour map: black where equal; full brightness at `scale` and
 // beyond, with a square root so that differences far below it still show.
-OIIO::ImageBuf diff_heat_map(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, double scale);
+// Ignored pixels (as for compare_images) show in kIgnoredColor.
+OIIO::ImageBuf diff_heat_map(const OIIO::ImageBuf& actual, const OIIO::ImageBuf& golden, double scale,
+                             const std::vector<std::uint8_t>& ignored = {});
+inline constexpr float kIgnoredColor[3] = {0.15f, 0.30f, 0.55f};  // a blue no inferno value has
 // The scale check reports use: twice the fail tolerance, or the largest difference when the tolerance is 0.
 double heat_map_scale(const Thresholds& thresholds, const Metrics& metrics);
 
 // An 8-bit display preview for the report: PNG goldens as they are; EXR radiance
-// tonemapped as the renderer does (Reinhard, then gamma 1/2.2).
+// encoded exactly as the renderer encodes its PNG (Reinhard, gamma 1/2.2,
+// UNORM8: image::unorm8_from_radiance_reference), so that a preview of an EXR
+// golden and the render's PNG agree where the radiance does. 8-bit RGB.
 OIIO::ImageBuf display_preview(const OIIO::ImageBuf& image, GoldenKind kind);
 
 }  // namespace tessera::check

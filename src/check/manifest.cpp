@@ -27,6 +27,8 @@
 //   scenes = "gltf/*"                # required: a scene name or glob over names, or an array of them;
 //                                    # each must match at least one scene
 //   fail_pixels = 20                 # any [thresholds] key, and width / height / msaa
+//   ignore = [[0, 0, 40, 12]]        # pixels not compared: [x, y, width, height] rectangles, row 0 at the top
+//   ignore_mask = "masks/clock.png"  # and/or a mask image the render's size: white pixels are not compared
 //
 // Threshold options on the command line apply after [thresholds] and before the overrides.
 #include <fnmatch.h>
@@ -35,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <toml++/toml.h>
@@ -309,12 +312,49 @@ private:
         }
         int width = 0, height = 0, msaa = 0;
         read_size(table, "override.", width, height, msaa);
+        std::optional<std::vector<IgnoreRect>> rects;
+        if (const toml::node* node = table.get("ignore")) rects = read_rects(*node);
+        std::optional<fs::path> mask;
+        if (const toml::node* node = table.get("ignore_mask")) {
+            mask = normal_absolute(manifest_.parent_path() / string_of(*node, "override.ignore_mask"));
+            std::error_code error;
+            if (!fs::is_regular_file(*mask, error)) fail_at(node->source(), mask->string() + ": no such mask image");
+        }
         for (SceneEntry* scene : matched) {
-            read_thresholds(table, scene->thresholds, "override", {"scenes", "width", "height", "msaa"});
+            read_thresholds(table, scene->thresholds, "override",
+                            {"scenes", "width", "height", "msaa", "ignore", "ignore_mask"});
             if (width) scene->width = width;
             if (height) scene->height = height;
             if (msaa) scene->msaa = msaa;
+            if (rects) scene->ignore.rects = *rects;  // a later override's list replaces an earlier one
+            if (mask) scene->ignore.mask = *mask;
         }
+    }
+
+    // ignore = [[x, y, width, height], ...]: integers, x, y >= 0, width, height >= 1.
+    std::vector<IgnoreRect> read_rects(const toml::node& node) const {
+        const toml::array* list = node.as_array();
+        if (!list) fail_type(node, "an array of [x, y, width, height] arrays", "override.ignore");
+        std::vector<IgnoreRect> rects;
+        for (const toml::node& item : *list) {
+            const toml::array* rect = item.as_array();
+            if (!rect || rect->size() != 4)
+                fail_at(item.source(), "expected [x, y, width, height] (4 integers, pixels, row 0 at the top) in "
+                                       "'override.ignore'");
+            long long v[4];
+            for (int i = 0; i < 4; ++i) {
+                const toml::node& n = *rect->get(std::size_t(i));
+                if (!n.is_integer()) fail_type(n, "an integer", "override.ignore");
+                v[i] = *n.value<long long>();
+                const long long low = i < 2 ? 0 : 1;
+                if (v[i] < low || v[i] > kMaxImageDimension)
+                    fail_at(n.source(), std::string("expected ") + (i < 2 ? "x and y" : "width and height") +
+                                            " in 'override.ignore' to be in " + std::to_string(low) + ".." +
+                                            std::to_string(kMaxImageDimension) + ", got " + std::to_string(v[i]));
+            }
+            rects.push_back({int(v[0]), int(v[1]), int(v[2]), int(v[3])});
+        }
+        return rects;
     }
 
     fs::path manifest_;
@@ -322,6 +362,22 @@ private:
 };
 
 }  // namespace
+
+bool matches_any(const std::string& name, const std::vector<std::string>& patterns) {
+    return std::any_of(patterns.begin(), patterns.end(),
+                       [&](const std::string& p) { return ::fnmatch(p.c_str(), name.c_str(), 0) == 0; });
+}
+
+std::vector<SceneEntry> filter_scenes(const std::vector<SceneEntry>& scenes, const std::vector<std::string>& patterns) {
+    for (const std::string& pattern : patterns)
+        if (std::none_of(scenes.begin(), scenes.end(),
+                         [&](const SceneEntry& s) { return ::fnmatch(pattern.c_str(), s.name.c_str(), 0) == 0; }))
+            throw ManifestError("--filter '" + pattern + "' matches no scene name of the suite");
+    std::vector<SceneEntry> kept;
+    for (const SceneEntry& scene : scenes)
+        if (matches_any(scene.name, patterns)) kept.push_back(scene);
+    return kept;
+}
 
 bool is_threshold_key(std::string_view key) {
     return std::find(std::begin(kNumericThresholdKeys), std::end(kNumericThresholdKeys), key) !=

@@ -27,7 +27,8 @@ fs::path resolved(const fs::path& path) {
 }
 
 // One report image link of a shard, as the merged report links it; an image
-// inside the shard's folder is copied to the same place under merged_dir. The
+// inside the shard's folder is copied (or hard-linked) to the same place under
+// merged_dir, so that the merged folder works on its own. The
 // copy goes only inside merged_dir (a link such as "a/../../x" cannot climb out
 // of it), and an image that is a symbolic link, or sits in a linked folder,
 // leading out of the shard's folder is refused: merging must not copy the
@@ -50,7 +51,7 @@ std::string merge_image(const std::string& link, const fs::path& shard_dir, cons
         throw MergeError(summary.string() + ": the report image " + relative.string() +
                          " would be written outside the merged report folder " + merged_dir.string() +
                          " (a linked folder there); refused");
-    copy_file_atomically(target, destination);
+    link_or_copy_file_atomically(target, destination);
     return relative.generic_string();
 }
 

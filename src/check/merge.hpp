@@ -21,10 +21,9 @@ public:
 // Reads <dir>/summary.json of every shard report folder and checks that they
 // are the N parts of one split (each part once). The scenes come back in the
 // suite's order, as one run lists them (a shard took every N-th scene); the
-// report images each shard wrote under its folder are copied to the same
-// place under merged_dir (its earlier images removed first), and links that
-// lead outside a shard's folder (identical PNG goldens) are re-pointed from
-// merged_dir. seconds is the sum of the shards' (the work, not the wall time).
+// report images each shard wrote under its folder are copied (or hard-linked)
+// to the same place under merged_dir (its earlier images removed first), so
+// that every link of the merged report stays inside its folder. seconds is the sum of the shards' (the work, not the wall time).
 // The caller writes the reports. Throws MergeError.
 CheckRun merge_shard_reports(const std::vector<std::filesystem::path>& shard_dirs,
                              const std::filesystem::path& merged_dir);

@@ -1,7 +1,11 @@
 // The HTML report: one static page beside its images. The page is small
 // (rows of markup and a few kilobytes of CSS and script, no inlined images);
-// images are PNG files loaded lazily as rows scroll into view, so that a
-// report of hundreds of scenes opens at once from disk (file://, no server).
+// images are PNG files in the report folder, loaded lazily as rows scroll into
+// view, so that a report of hundreds of scenes opens at once from disk
+// (file://, no server). The first rows' images, which the first screen shows,
+// load eagerly and decode synchronously: with decoding="async" a large image
+// can still be a black box when the page is first painted (headless
+// Chromium's screenshots showed it).
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -208,10 +212,14 @@ document.querySelectorAll('.max-at').forEach(link => link.addEventListener('clic
 document.body.dataset.ready = 'true';
 )JS";
 
-std::string image_tag(const std::string& link, const char* alt, const SceneResult& r, const char* css_class = "") {
-    return "<img src=\"" + url_of(link) + "\" alt=\"" + alt + "\" class=\"" + css_class +
-           "\" loading=\"lazy\" decoding=\"async\" width=\"" + std::to_string(r.width) + "\" height=\"" +
-           std::to_string(r.height) + "\">";
+// Rows whose images the first screen of the report shows (about three rows at 1000 px).
+constexpr std::size_t kFirstScreenRows = 3;
+
+std::string image_tag(const std::string& link, const char* alt, const SceneResult& r, bool first_screen,
+                      const char* css_class = "") {
+    return "<img src=\"" + url_of(link) + "\" alt=\"" + alt + "\" class=\"" + css_class + "\" " +
+           (first_screen ? "loading=\"eager\" decoding=\"sync\"" : "loading=\"lazy\" decoding=\"async\"") +
+           " width=\"" + std::to_string(r.width) + "\" height=\"" + std::to_string(r.height) + "\">";
 }
 
 std::string numbers_table(const SceneResult& r) {
@@ -229,6 +237,8 @@ std::string numbers_table(const SceneResult& r) {
                                       std::to_string(m.max_channel));
         row("mean / RMS", format("%.3g", m.mean_error) + " / " + format("%.3g", m.rms_error));
         row("PSNR", std::isfinite(m.psnr) ? format("%.2f dB", m.psnr) : "identical");
+        if (m.ignored_pixels > 0)
+            row("ignored pixels", std::to_string(m.ignored_pixels) + " (not compared; blue in the diff)");
         row("pixels over fail", std::to_string(m.pixels_over_fail) + " (allowed " +
                                     pixels_text(allowed_pixels(th.fail_pixels, th.fail_ratio, m.pixels)) + ")");
         row("pixels over warn", std::to_string(m.pixels_over_warn) + " (warn past " +
@@ -249,7 +259,7 @@ std::string numbers_table(const SceneResult& r) {
     return t + "</table>";
 }
 
-std::string scene_row(const SceneResult& r) {
+std::string scene_row(const SceneResult& r, bool first_screen) {
     const std::string status(status_name(r.status));
     std::string row = "<section class=\"scene\" id=\"scene-" + html_escape(r.name) + "\" data-status=\"" + status +
                       "\" data-name=\"" + html_escape(r.name) + "\" data-width=\"" + std::to_string(r.width) +
@@ -265,20 +275,20 @@ std::string scene_row(const SceneResult& r) {
                "<button data-mode=\"flicker\" aria-pressed=\"false\">flicker</button></div>";
     row += "<div class=\"side\">";
     if (both && r.images.expected == r.images.actual) {
-        row += "<figure>" + image_tag(r.images.actual, "expected = actual", r) +
+        row += "<figure>" + image_tag(r.images.actual, "expected = actual", r, first_screen) +
                "<figcaption>expected = actual (identical)</figcaption></figure>";
     } else {
         if (!r.images.expected.empty())
-            row += "<figure>" + image_tag(r.images.expected, "expected", r) + "<figcaption>expected</figcaption></figure>";
+            row += "<figure>" + image_tag(r.images.expected, "expected", r, first_screen) + "<figcaption>expected</figcaption></figure>";
         if (!r.images.actual.empty())
-            row += "<figure>" + image_tag(r.images.actual, "actual", r) + "<figcaption>actual</figcaption></figure>";
+            row += "<figure>" + image_tag(r.images.actual, "actual", r, first_screen) + "<figcaption>actual</figcaption></figure>";
         if (!r.images.diff.empty())
-            row += "<figure>" + image_tag(r.images.diff, "diff", r) + "<figcaption>diff</figcaption></figure>";
+            row += "<figure>" + image_tag(r.images.diff, "diff", r, first_screen) + "<figcaption>diff</figcaption></figure>";
     }
     row += "</div>";
     if (both && r.images.expected != r.images.actual)
-        row += "<div class=\"stack\" hidden>" + image_tag(r.images.expected, "expected", r, "under") +
-               image_tag(r.images.actual, "actual", r, "over") +
+        row += "<div class=\"stack\" hidden>" + image_tag(r.images.expected, "expected", r, false, "under") +
+               image_tag(r.images.actual, "actual", r, false, "over") +
                "<input type=\"range\" min=\"0\" max=\"100\" value=\"50\" aria-label=\"slider\">"
                "<figcaption class=\"showing\"></figcaption></div>";
     row += "</div>" + numbers_table(r) + "</div>\n</section>\n";
@@ -308,7 +318,8 @@ void write_html_report(const CheckRun& run, const std::filesystem::path& report_
             "<button data-mode=\"side\" aria-pressed=\"true\">side by side</button> "
             "<button data-mode=\"slider\" aria-pressed=\"false\">slider</button> "
             "<button data-mode=\"flicker\" aria-pressed=\"false\">flicker</button></nav></header>\n<main id=\"scenes\">\n";
-    for (const SceneResult* r : worst_first(run)) html += scene_row(*r);
+    std::size_t index = 0;
+    for (const SceneResult* r : worst_first(run)) html += scene_row(*r, index++ < kFirstScreenRows);
     html += "</main>\n<dialog id=\"zoom\"><p><span class=\"where\"></span> &nbsp; "
             "<button data-scale=\"0.5\">−</button> <button data-scale=\"2\">+</button> "
             "<button class=\"close\">close (Esc)</button> &nbsp; click a pane to centre it there</p>"

@@ -83,6 +83,7 @@ void thresholds_fields(Io& io, T& t) {
 template <typename Io, typename M>
 void metrics_fields(Io& io, M& m) {
     io("pixels", m.pixels);
+    io("ignored_pixels", m.ignored_pixels);
     io("max_error", m.max_error);
     io("max_x", m.max_x);
     io("max_y", m.max_y);

@@ -40,12 +40,6 @@ fs::path golden_for(const SceneEntry& entry, GoldenFormat new_format) {
     return new_format == GoldenFormat::exr ? exr : png;
 }
 
-// A path as a link from the report folder: relative, with '/' separators.
-std::string link_from(const fs::path& report_dir, const fs::path& target) {
-    return fs::absolute(target).lexically_normal().lexically_relative(fs::absolute(report_dir).lexically_normal())
-        .generic_string();
-}
-
 struct SceneRun {
     const SceneEntry& entry;
     const RunOptions& options;
@@ -95,6 +89,15 @@ SceneResult check_scene(const SceneRun& run) {
         return link;
     };
     const OIIO::ImageBuf display = actual_image(*image, GoldenKind::png);
+    std::vector<std::uint8_t> ignored_pixels;
+    try {
+        ignored_pixels = ignore_mask(entry.ignore, r.width, r.height);
+    } catch (const std::runtime_error& e) {  // an unreadable mask, or one of another size
+        r.status = Status::error;
+        r.reason = e.what();
+        r.compare_ms = ms_since(compare_start);
+        return r;
+    }
 
     std::error_code ignored;
     if (!fs::exists(r.golden, ignored)) {
@@ -105,15 +108,21 @@ SceneResult check_scene(const SceneRun& run) {
         try {
             const OIIO::ImageBuf golden = read_golden(r.golden, image->width, image->height);
             const OIIO::ImageBuf actual = actual_image(*image, r.golden_kind);
-            const Comparison comparison = compare_images(actual, golden, entry.thresholds, r.golden_kind);
+            const Comparison comparison =
+                compare_images(actual, golden, entry.thresholds, r.golden_kind, ignored_pixels);
             r.status = comparison.status;
             r.reason = comparison.reason;
             r.compared = comparison.compared;
             r.metrics = comparison.metrics;
-            const bool identical = comparison.compared && comparison.metrics.max_error == 0;
-            if (identical) {  // one image stands for both; a PNG golden is linked, not copied
-                r.images.expected = r.golden_kind == GoldenKind::png ? link_from(report, r.golden)
-                                                                     : report_png(display, ".actual.png");
+            const bool identical = comparison.compared && comparison.metrics.max_error == 0 &&
+                                   comparison.metrics.ignored_pixels == 0;
+            if (identical) {  // one image stands for both: a PNG golden linked (or copied) into the report
+                if (r.golden_kind == GoldenKind::png) {
+                    r.images.expected = base + ".golden.png";
+                    link_or_copy_file_atomically(r.golden, report / r.images.expected);
+                } else {
+                    r.images.expected = report_png(display, ".actual.png");
+                }
                 r.images.actual = r.images.expected;
             } else {
                 if (r.golden_kind == GoldenKind::png) {
@@ -125,7 +134,8 @@ SceneResult check_scene(const SceneRun& run) {
                 r.images.actual = report_png(display, ".actual.png");
                 if (comparison.compared) {
                     r.images.diff_scale = heat_map_scale(entry.thresholds, comparison.metrics);
-                    r.images.diff = report_png(diff_heat_map(actual, golden, r.images.diff_scale), ".diff.png");
+                    r.images.diff = report_png(diff_heat_map(actual, golden, r.images.diff_scale, ignored_pixels),
+                                               ".diff.png");
                 }
             }
         } catch (const std::runtime_error& e) {  // an unreadable golden fails the scene; the others go on
@@ -139,8 +149,11 @@ SceneResult check_scene(const SceneRun& run) {
     }
 
     const UpdateMode update = run.options.update;
+    const bool differs = r.status == Status::fail || r.status == Status::missing || r.status == Status::warn ||
+                         (r.compared && (r.metrics.max_error > 0 || r.metrics.ignored_pixels > 0));
     const bool update_this = (update == UpdateMode::failed && (r.status == Status::fail || r.status == Status::missing)) ||
-                             (update == UpdateMode::missing && r.status == Status::missing);
+                             (update == UpdateMode::missing && r.status == Status::missing) ||
+                             (update == UpdateMode::named && differs && matches_any(r.name, run.options.update_names));
     if (update_this) {
         fs::create_directories(r.golden.parent_path(), ignored);
         write_image(*image, r.golden);  // atomic: a temporary file renamed into place
@@ -151,17 +164,29 @@ SceneResult check_scene(const SceneRun& run) {
     return r;
 }
 
-// Images an earlier run wrote (and only those: the folder may be the user's), so that none outlives its scene.
+bool is_report_image(const std::string& name) {
+    for (const char* suffix : {".expected.png", ".actual.png", ".diff.png", ".golden.png"})
+        if (name.ends_with(suffix)) return true;
+    return false;
+}
+
+// Images an earlier run wrote (and only those: the folder may be the user's), so that none outlives its scene,
+// then the folders of nested scene names ("images/gltf/") that this leaves empty.
 void remove_stale_report_images(const fs::path& images) {
     std::error_code error;
-    std::vector<fs::path> stale;
+    std::vector<fs::path> stale, folders;
     for (auto it = fs::recursive_directory_iterator(images, error); !error && it != fs::recursive_directory_iterator();
          it.increment(error)) {
-        const std::string name = it->path().filename().string();
-        if (name.ends_with(".expected.png") || name.ends_with(".actual.png") || name.ends_with(".diff.png"))
-            stale.push_back(it->path());
+        if (it->is_directory(error)) folders.push_back(it->path());
+        else if (is_report_image(it->path().filename().string())) stale.push_back(it->path());
     }
     for (const fs::path& path : stale) fs::remove(path, error);
+    // Deepest first; fs::remove leaves a folder that still holds something.
+    std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
+        return std::distance(a.begin(), a.end()) > std::distance(b.begin(), b.end());
+    });
+    for (const fs::path& folder : folders)
+        if (fs::is_empty(folder, error)) fs::remove(folder, error);
 }
 
 // How bad a result is, for ordering within a status: first how much of the image is beyond the

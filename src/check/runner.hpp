@@ -15,16 +15,20 @@
 
 namespace tessera::check {
 
-enum class UpdateMode { none, failed, missing };  // --update writes goldens for fail + missing; =missing only missing
+// --update writes goldens for fail + missing; =missing only missing; --update NAME... (named) for the scenes
+// RunOptions::update_names matches, whatever they differ by (not errors, not bit-identical renders).
+enum class UpdateMode { none, failed, missing, named };
 
 struct RunOptions {
-    std::filesystem::path report_dir;  // created; its images/ folder is emptied and refilled
+    std::filesystem::path report_dir;  // created; the images an earlier run left in images/ are removed
     RenderSettings settings;           // threads, tile size, ISA (keep_radiance is decided per suite)
     UpdateMode update = UpdateMode::none;
+    std::vector<std::string> update_names;  // UpdateMode::named: scene names or glob patterns over them
     GoldenFormat new_golden_format = GoldenFormat::png;
 };
 
-// The report's images of one scene, relative to the report folder ("" where there is none).
+// The report's images of one scene, relative to the report folder and inside it ("" where there is none),
+// so that the folder works on its own (a CI artifact): a bit-identical scene's golden is linked or copied in.
 struct ReportImages {
     std::string expected;
     std::string actual;
@@ -70,8 +74,9 @@ using Progress = std::function<void(std::size_t index, std::size_t count, const 
 // folder cannot be made.
 CheckRun run_check(const std::vector<SceneEntry>& scenes, const RunOptions& options, const Progress& progress = {});
 
-// Removes the report images (*.expected.png, *.actual.png, *.diff.png) an
-// earlier run left under report_dir/images, and nothing else.
+// Removes the report images (*.expected.png, *.actual.png, *.diff.png,
+// *.golden.png) an earlier run left under report_dir/images, and the folders
+// that leaves empty; nothing else.
 void remove_report_images(const std::filesystem::path& report_dir);
 
 // Results ordered as a report lists them: errors, failures, missing, warnings,

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "check/ignore_regions.hpp"
 #include "check/thresholds.hpp"
 
 namespace tessera::check {
@@ -26,6 +27,7 @@ struct SceneEntry {
     std::filesystem::path scene;      // the scene file (TOML, .gltf or .glb)
     std::filesystem::path golden_stem;  // golden folder / name; the golden is golden_stem + ".png" or ".exr"
     Thresholds thresholds;
+    IgnoreRegions ignore;             // pixels left out of the comparison ([[override]] ignore, ignore_mask)
     int width = 0;                    // 0: the scene's own output size / MSAA
     int height = 0;
     int msaa = 0;
@@ -46,13 +48,22 @@ struct SuiteDefaults {
     int width = 0, height = 0, msaa = 0;
 };
 
-// Reads check.toml (format at the top of manifest.cpp). Throws ManifestError.
+// Reads check.toml (format: docs/check.md, and the comment at the top of
+// manifest.cpp). Throws ManifestError.
 Suite load_manifest(const std::filesystem::path& manifest, const SuiteDefaults& command_line);
 
 // Scene files (or glob patterns) checked against golden_dir/<name>.png|.exr.
 // scene_root: names are relative to it; empty: the deepest folder holding every scene.
 Suite suite_from_arguments(const std::vector<std::string>& scene_patterns, const std::filesystem::path& golden_dir,
                            const std::filesystem::path& scene_root, const SuiteDefaults& command_line);
+
+// The scenes whose names match any of the glob patterns (fnmatch: * also
+// matches '/'), in suite order: --filter. Throws ManifestError naming a pattern
+// that matches no scene.
+std::vector<SceneEntry> filter_scenes(const std::vector<SceneEntry>& scenes, const std::vector<std::string>& patterns);
+
+// Whether `name` matches any of the glob patterns.
+bool matches_any(const std::string& name, const std::vector<std::string>& patterns);
 
 // Sets one threshold by its manifest key ("fail", "fail_pixels", ...). Throws
 // std::invalid_argument for an unknown key or a value out of range.

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -43,6 +45,13 @@ private:
     bool terminal_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
+
+// A scene file or manifest, as opposed to a scene name (names have no extension).
+bool is_input_path(const std::string& value) {
+    std::string extension = fs::path(value).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".toml" || extension == ".gltf" || extension == ".glb";
+}
 
 check::Suite load_suite(const CheckCommand& cmd) {
     if (cmd.golden_dir.empty()) {
@@ -104,21 +113,27 @@ int run_merge(const CheckCommand& cmd) {
 CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
     CLI::App* check = app.add_subcommand(
         "check", "Render scenes and compare each with its golden image; write an HTML, JUnit and JSON report");
+    // Not ->required(): inputs after a bare --update arrive as its values, and run_check moves them back.
     check->add_option("input", cmd.inputs,
                       "A manifest (check.toml), or with --golden scene files / glob patterns (quoted), or with --merge "
-                      "the shards' report folders")
-        ->required();
+                      "the shards' report folders");
     CLI::Option* golden = check->add_option("-g,--golden", cmd.golden_dir, "Golden image folder: <name>.png or <name>.exr per scene");
     CLI::Option* scene_root = check->add_option("--scene-root", cmd.scene_root,
                       "With --golden: names are scene paths below this folder (default: the deepest common folder)");
     check->add_option("-r,--report", cmd.report_dir, "Report folder (default: the manifest's report, else check-report)");
     check->add_option("--junit", cmd.junit_path, "JUnit XML file (default: REPORT/junit.xml)");
     check->add_option("--json", cmd.json_path, "JSON summary file (default: REPORT/summary.json)");
-    // A flag that takes a value only as --update=missing, so that a scene file after it stays a scene.
-    CLI::Option* update = check->add_flag("--update{failed}", cmd.update,
-                    "Write golden images for failing and missing scenes (--update=missing: only missing ones), "
-                    "atomically")
-        ->check(CLI::IsMember({"failed", "missing"}));
+    CLI::Option* update =
+        check->add_option("--update", cmd.update,
+                          "Write golden images, atomically: bare, for failing and missing scenes; =missing, only "
+                          "missing ones; NAME... (scene names or quoted globs), for those scenes whatever they differ by")
+            ->expected(0, CLI::detail::expected_max_vector_size)
+            ->allow_extra_args(true)
+            ->delimiter(',');
+    cmd.update_option = update;
+    check->add_option("--filter", cmd.filters,
+                      "Check only the scenes whose names match one of these globs (e.g. 'gltf/*'; repeatable)")
+        ->delimiter(',');
     check->add_option("--new-golden-format", cmd.new_golden_format, "With --golden: png or exr for new golden images")
         ->check(CLI::IsMember({"png", "exr"}));
     check->add_flag("-q,--quiet", cmd.quiet, "No progress lines");
@@ -166,11 +181,50 @@ CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
 }
 
 int run_check(CheckCommand& cmd) {
-    if (cmd.merge) return run_merge(cmd);
+    // --update's values: "missing", scene names, or inputs that followed a bare --update.
+    std::vector<std::string> update_names;
+    const bool update_given = cmd.update_option != nullptr && cmd.update_option->count() > 0;
+    check::UpdateMode update_mode = update_given ? check::UpdateMode::failed : check::UpdateMode::none;
+    bool mode_word = false;
+    for (const std::string& value : cmd.update) {
+        if (value.empty()) continue;
+        if (value == "failed" || value == "missing") {
+            mode_word = true;
+            update_mode = value == "missing" ? check::UpdateMode::missing : check::UpdateMode::failed;
+        } else if (is_input_path(value)) {
+            cmd.inputs.push_back(value);
+        } else {
+            update_names.push_back(value);
+        }
+    }
+    if (mode_word && !update_names.empty()) {
+        std::fprintf(stderr, "tessera: error: --update takes 'missing' or scene names, not both\n");
+        return kCheckUsageError;
+    }
+    if (!update_names.empty()) update_mode = check::UpdateMode::named;
+    if (cmd.inputs.empty()) {
+        std::fprintf(stderr, "tessera: error: check: expected a manifest (check.toml), or scene files with --golden "
+                             "DIR, or report folders with --merge\n");
+        return kCheckUsageError;
+    }
+    if (cmd.merge) {
+        if (update_given || !cmd.filters.empty()) {
+            std::fprintf(stderr, "tessera: error: --merge puts finished shards together: --update and --filter apply "
+                                 "when the shards run\n");
+            return kCheckUsageError;
+        }
+        return run_merge(cmd);
+    }
     check::Suite suite;
     batch::ShardChoice shard;
     try {
         suite = load_suite(cmd);
+        if (!cmd.filters.empty()) suite.scenes = check::filter_scenes(suite.scenes, cmd.filters);
+        for (const std::string& name : update_names)
+            if (std::none_of(suite.scenes.begin(), suite.scenes.end(),
+                             [&](const check::SceneEntry& e) { return check::matches_any(e.name, {name}); }))
+                throw check::ManifestError("--update '" + name + "' matches no scene name" +
+                                           (cmd.filters.empty() ? "" : " that --filter keeps") + " of the suite");
         shard = batch::choose_shard(cmd.shard, cmd.shard_count, batch::process_environment());
     } catch (const std::exception& e) {  // ManifestError, threshold values out of range, ShardError
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
@@ -191,9 +245,8 @@ int run_check(CheckCommand& cmd) {
     if (cmd.report_dir.empty() && shard.shard.count > 1)
         options.report_dir /= "shard_" + std::to_string(shard.shard.index + 1);
     options.settings = cmd.settings;
-    options.update = cmd.update.empty() ? check::UpdateMode::none
-                     : cmd.update == "missing" ? check::UpdateMode::missing
-                                               : check::UpdateMode::failed;
+    options.update = update_mode;
+    options.update_names = update_names;
     options.new_golden_format = suite.new_golden_format;
     ProgressLine progress(cmd.quiet);
     check::CheckRun run;

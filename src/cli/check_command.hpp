@@ -20,7 +20,12 @@ struct CheckCommand {
     std::string report_dir;           // default: the manifest's `report`, else ./check-report
     std::string junit_path;           // default: <report>/junit.xml
     std::string json_path;            // default: <report>/summary.json
-    std::string update;               // "", "failed" (bare --update) or "missing"
+    // --update's values: none given = "failed" (bare --update), "missing", or scene names / globs over them.
+    // Values that are scene files or manifests (a .toml, .gltf or .glb path) were inputs that followed
+    // a bare --update: run_check moves them back.
+    std::vector<std::string> update;
+    const CLI::Option* update_option = nullptr;  // whether --update was given at all (bare, it has no values)
+    std::vector<std::string> filters;   // --filter GLOB...: only the scenes whose names match
     std::string new_golden_format = "png";
     bool quiet = false;
     std::optional<std::string> shard;  // --shard I/N; default from Slurm / Kubernetes, as `tessera render`

@@ -57,6 +57,38 @@ expect_status 1 "one pixel off fails by default" "$tessera" check "$scenes/ball.
 expect_status 0 "--fail-pixels 1 lets it through" "$tessera" check "$scenes/ball.toml" --golden golden --fail-pixels 1
 expect_text out.txt "1 warned" "...as a warning"
 
+# Ignore regions from a manifest: the one changed pixel (at 0, 0) ignored, the scene passes.
+printf 'scenes = ["%s/ball.toml"]\ngolden = "golden"\n[[override]]\nscenes = "ball"\nignore = [[0, 0, 2, 2]]\n' \
+  "$scenes" > ignore.toml
+expect_status 0 "an ignored region" "$tessera" check ignore.toml --report ignore-report
+expect_text out.txt "1 passed" "...passes"
+expect_text ignore-report/index.html "ignored pixels</th><td>4 (not compared" "the report counts the ignored pixels"
+
+# --filter runs a subset of the suite; a glob that matches nothing is bad usage.
+both=("$scenes/ball.toml" "$scenes/more/glint.toml")
+expect_status 1 "--filter ball keeps the failing scene" "$tessera" check "${both[@]}" --golden golden --filter ball
+expect_text out.txt "0 errors of 1 scenes" "--filter ran one scene"
+expect_status 0 "--filter 'more/*' runs the passing one" "$tessera" check "${both[@]}" --golden golden --filter 'more/*'
+expect_text out.txt "1 passed, 0 warned, 0 failed, 0 missing, 0 errors of 1 scenes" "...alone"
+expect_status 2 "--filter matching nothing" "$tessera" check "${both[@]}" --golden golden --filter 'gltf/*'
+expect_text err.txt "tessera: error: --filter 'gltf/*' matches no scene name of the suite" "...says which"
+
+# --update NAME...: only the named scene is written; scene files after --update stay inputs.
+cp golden/more/glint.png golden/ball.png
+cp golden/more/glint.png golden/more/glint_before.png
+expect_status 2 "--update with an unknown name" "$tessera" check "${both[@]}" --golden golden --update nope
+expect_text err.txt "tessera: error: --update 'nope' matches no scene name of the suite" "...names it"
+expect_status 0 "--update ball, before the scene files" "$tessera" check --golden golden --update ball "${both[@]}"
+expect_text err.txt "updated $work/golden/ball.png (it differed: " "the named scene is updated"
+expect_text out.txt "of 2 scenes" "the scene files after --update were inputs"
+cmp -s golden/more/glint.png golden/more/glint_before.png || { echo "FAILED: an unnamed scene's golden changed"; failures=$((failures + 1)); }
+rm golden/more/glint_before.png
+expect_status 0 "then it passes" "$tessera" check "${both[@]}" --golden golden
+cp golden/more/glint.png golden/ball.png
+expect_status 0 "a bare --update before a scene file" "$tessera" check --golden golden --update "$scenes/ball.toml"
+expect_text err.txt "updated $work/golden/ball.png" "...updates the failing scene"
+expect_status 2 "--update missing and names at once" "$tessera" check "${both[@]}" --golden golden --update missing,ball
+
 # A scene that does not load is an error (1), and the others still run.
 expect_status 1 "an error" "$tessera" check "$scenes/broken.toml" "$scenes/more/glint.toml" --golden golden
 expect_text err.txt "error broken: $scenes/broken.toml:2:1: missing required key 'camera.target'" "the scene's error"

@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
 """Opens a `tessera check` report with failing scenes in headless Chromium and
 asserts on what its script made of the page: the rows and their order, images
-that really loaded, the slider/flicker toggle and the pixel zoom. Writes
-screenshots beside the report. Skips (exit 77) where Chromium is absent.
+that really loaded, the slider/flicker toggle and the pixel zoom; that no image
+of an earlier run is left in the report folder; that the folder alone, moved
+away from the goldens as a CI artifact is, still shows every image; that the
+first screen's large images are painted in the first screenshot (no
+decoding="async" there); and that an EXR golden's preview shows the colours of
+the render's PNG. Writes screenshots beside the report. Skips (exit 77) where
+Chromium is absent.
 
 usage: report_browser_test.py TESSERA WORK_DIR
 
@@ -11,13 +16,16 @@ Chromium is driven through the DevTools protocol over a pipe
 nothing listens on the network and no package beyond Debian's chromium is needed.
 """
 import base64
+import html.parser
 import json
 import os
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
 import time
+import zlib
 
 SKIP = 77
 
@@ -41,6 +49,65 @@ def make_report(tessera, work, scenes):
     return os.path.join(work, "report", "index.html")
 
 
+def make_exr_report(tessera, work, scenes):
+    """A large render (1024x768) against an EXR golden with a bright patch in a corner: a failure whose three
+    images fill the first screen."""
+    golden = os.path.join(work, "exr_golden")
+    args = [tessera, "check", os.path.join(scenes, "ball.toml"), "--golden", golden, "--width", "1024", "--height", "768",
+            "--report", os.path.join(work, "exr_report"), "-q"]
+    run(args + ["--update=missing", "--new-golden-format", "exr"], 0)
+    exr = os.path.join(golden, "ball.exr")
+    run(["oiiotool", "--pattern", "constant:color=8,8,8", "40x30", "3", exr, "--paste", "+0+0", "-d", "half",
+         "-o", exr], 0)  # the patch (the stack's second image) pasted into the golden
+    run(args, 1)
+    return os.path.join(work, "exr_report", "index.html")
+
+
+def png_pixel(path, x, y):
+    """The RGB of one pixel of an 8-bit RGB or RGBA, non-interlaced PNG (Chromium's screenshots)."""
+    data = open(path, "rb").read()
+    pos, idat, width, height, channels = 8, b"", 0, 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, color = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and body[12] == 0, "8-bit, non-interlaced"
+            channels = {2: 3, 6: 4}[color]
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride, previous = zlib.decompress(idat), width * channels, bytearray(width * channels)
+    for row in range(y + 1):
+        kind, line = raw[row * (stride + 1)], bytearray(raw[row * (stride + 1) + 1:(row + 1) * (stride + 1)])
+        for i in range(stride):
+            left = line[i - channels] if i >= channels else 0
+            up, corner = previous[i], previous[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + left) & 255
+            elif kind == 2:
+                line[i] = (line[i] + up) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (left + up) // 2) & 255
+            elif kind == 4:
+                p = left + up - corner
+                pa, pb, pc = abs(p - left), abs(p - up), abs(p - corner)
+                line[i] = (line[i] + (left if pa <= pb and pa <= pc else up if pb <= pc else corner)) & 255
+        previous = line
+    return tuple(previous[x * channels:x * channels + 3])
+
+
+class Sources(html.parser.HTMLParser):
+    """Every src and href of a page."""
+
+    def __init__(self):
+        super().__init__()
+        self.links = []
+
+    def handle_starttag(self, tag, attrs):
+        self.links += [value for name, value in attrs if name in ("src", "href") and value]
+
+
 class Chromium:
     """One headless Chromium, driven over --remote-debugging-pipe; always stopped by its PID."""
 
@@ -55,7 +122,9 @@ class Chromium:
         self.process = subprocess.Popen(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
              "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             "--user-data-dir=" + profile, "--remote-debugging-pipe", "--window-size=1400,1000", "about:blank"],
+             "--user-data-dir=" + profile, "--remote-debugging-pipe",
+             "--allow-file-access-from-files",  # file:// images may be read back through a canvas
+             "--window-size=1400,1000", "about:blank"],
             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=log,
             # close_fds would run after preexec_fn and close 3 and 4 again
             preexec_fn=child_fds, close_fds=False)
@@ -98,13 +167,14 @@ class Chromium:
             raise RuntimeError(f"{expression}: {result['exceptionDetails']}")
         return result["result"].get("value")
 
-    def wait_for(self, expression, what, seconds=20):
+    def wait_for(self, expression, what, seconds=60):  # generous: CI machines are busy
         deadline = time.time() + seconds
         while time.time() < deadline:
             if self.js(expression):
                 return
             time.sleep(0.1)
-        raise AssertionError(f"timed out waiting for {what}: {expression}")
+        state = self.js("[document.URL, document.readyState, document.images.length]")
+        raise AssertionError(f"timed out waiting for {what}: {expression} (page: {state})")
 
     def click(self, selector):
         box = self.js(f"(() => {{ const e = document.querySelector({json.dumps(selector)}); e.scrollIntoView({{block: 'center'}});"
@@ -165,7 +235,12 @@ def main():
         print("images in view:", loaded)
         check(len(loaded) >= 3 and all(w == 96 and h == 64 for _, w, h in loaded),
               "every image in view loaded from disk at its size (96x64)")
-        check(browser.js("[...document.querySelectorAll('img')].every(i => i.loading === 'lazy')"), "every image is lazy")
+        attributes = browser.js("[...document.querySelectorAll('.scene')].map((row, i) => [i, [...row.querySelectorAll('.side img')]"
+                                ".map(img => [img.loading, img.getAttribute('decoding')])])")
+        print("loading, decoding per row:", attributes)
+        check(all(a == ["eager", "sync"] for i, imgs in attributes[:3] for a in imgs) and
+              all(a == ["lazy", "async"] for i, imgs in attributes[3:] for a in imgs),
+              "the first screen's rows load eagerly and decode synchronously (no decoding=async), later rows lazily")
         browser.js("document.querySelector('#scene-cube').scrollIntoView()")
         browser.wait_for("(i => i.complete && i.naturalWidth === 96)(document.querySelector('#scene-cube img'))",
                          "the passing row's image (linked golden) to load when scrolled to")
@@ -204,14 +279,71 @@ def main():
         browser.click("nav button[data-mode=side]")
         browser.js("scrollTo(0, 0)")
         browser.screenshot(os.path.join(work, "report.png"))
-        print("screenshots:", ", ".join(os.path.join(work, f) for f in ("report.png", "report_slider.png", "report_zoom.png")))
+
+        # Stale images: the first run wrote an actual image for every scene; the second left only what it shows.
+        report_dir = os.path.dirname(report)
+        page = Sources()
+        page.feed(open(report).read())
+        shown = {os.path.normpath(link) for link in page.links if link != "#"}
+        on_disk = {os.path.normpath(os.path.relpath(os.path.join(folder, f), report_dir))
+                   for folder, _, files in os.walk(os.path.join(report_dir, "images")) for f in files}
+        print("report images on disk:", sorted(on_disk))
+        check(on_disk == shown, "the report folder holds exactly the images the page shows (none of the earlier run)")
+        check(not os.path.exists(os.path.join(report_dir, "images", "cube.actual.png")),
+              "the passing scene's image of the earlier run is gone")
+
+        # The folder alone, as a CI artifact: moved away, the goldens deleted, every image still loads.
+        artifact = os.path.join(work, "artifact", "check-report")
+        shutil.copytree(report_dir, artifact)
+        shutil.rmtree(os.path.join(work, "golden"))
+        check(all(not link.startswith(("/", "file:", "..")) and ":" not in link for link in page.links),
+              "every link of the page is relative and inside its folder")
+        browser.open("file://" + os.path.join(artifact, "index.html"))
+        browser.wait_for("document.readyState === 'complete' && document.body.dataset.ready === 'true'", "the moved report")
+        browser.js("document.querySelectorAll('img').forEach(i => { i.loading = 'eager'; })")  # load the lazy rows too
+        browser.wait_for("[...document.querySelectorAll('img')].every(i => i.complete)", "every image of the moved report")
+        broken = browser.js("[...document.querySelectorAll('img')].filter(i => i.naturalWidth === 0).map(i => i.src)")
+        check(broken == [], f"the moved folder alone shows every image (broken: {broken})")
     finally:
         browser.stop()
         shutil.rmtree(profile, ignore_errors=True)
         log.close()
+    check_exr_report(make_exr_report(tessera, work, scenes), work)
     if failures:
         sys.exit(f"{len(failures)} browser checks failed")
     print("the report works in Chromium")
+
+
+def check_exr_report(report, work):
+    """The first screenshot after load shows the large images (not black boxes), and the EXR golden's preview
+    has the colours of the render's PNG where the two agree."""
+    log = open(os.path.join(work, "chromium_exr.log"), "w")
+    profile = tempfile.mkdtemp(prefix="tessera-chromium-")
+    browser = Chromium(profile, log)
+    try:
+        browser.open("file://" + report)
+        browser.wait_for("document.readyState === 'complete' && document.body.dataset.ready === 'true'", "the EXR report")
+        shot = os.path.join(work, "report_first_screen.png")
+        browser.screenshot(shot)  # at once: no waiting for the images beyond the page's load
+        boxes = browser.js("[...document.querySelectorAll('#scene-ball .side img')].map(i => { const r = i.getBoundingClientRect();"
+                           " return [i.alt, Math.round(r.left + r.width / 2), Math.round(r.top + r.height / 2)]; })")
+        centres = {alt: png_pixel(shot, x, y) for alt, x, y in boxes}
+        print("first screenshot, image centres:", centres)
+        check(all(max(centres[alt]) > 40 for alt in ("expected", "actual")),
+              "the first screenshot shows the large expected and actual images, not black boxes")
+        # Colours through the browser's colour management: a canvas gets what the screen would show.
+        colours = browser.js("""(() => [...document.querySelectorAll('#scene-ball .side img')].slice(0, 2).map(img => {
+            const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight;
+            const g = c.getContext('2d'); g.drawImage(img, 0, 0);
+            return [[512, 384], [900, 700]].map(([x, y]) => [...g.getImageData(x, y, 1, 1).data.slice(0, 3)]); }))()""")
+        print("expected, actual at (512, 384) and (900, 700):", colours)
+        expected, actual = colours
+        check(all(abs(e - a) <= 2 for pe, pa in zip(expected, actual) for e, a in zip(pe, pa)),
+              "the EXR golden's preview shows the render's colours where the radiance agrees (tone-mapped, sRGB)")
+    finally:
+        browser.stop()
+        shutil.rmtree(profile, ignore_errors=True)
+        log.close()
 
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")

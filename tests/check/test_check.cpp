@@ -239,7 +239,9 @@ TEST_CASE("check run: pass, fail, missing and error in one run, then --update, a
     CHECK(second.exit_status() == 1);
     CHECK(fs::exists(options.report_dir / ball.images.diff));
     CHECK(fs::exists(options.report_dir / ball.images.expected));
-    CHECK(result_named(second, "cube").images.expected == "../golden/cube.png");  // identical: linked, not copied
+    // Identical: one image, the golden linked (or copied) into the report, so that the folder works on its own.
+    CHECK(result_named(second, "cube").images.expected == "images/cube.golden.png");
+    CHECK(fs::exists(options.report_dir / "images" / "cube.golden.png"));
     const std::vector<const check::SceneResult*> order = check::worst_first(second);
     CHECK(order[0]->name == "broken");
     CHECK(order[1]->name == "ball");
