@@ -10,6 +10,8 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev
   # Image I/O of tessera render without OpenImageIO: PNG, JPEG textures; PNG, EXR outputs.
   libpng-dev libjpeg62-turbo-dev libopenexr-dev
+  # glTF textures in WebP and AVIF (EXT_texture_webp, EXT_texture_avif).
+  libwebp-dev libavif-dev
   # Compressed glTF geometry: KHR_draco_mesh_compression and EXT_meshopt_compression.
   libdraco-dev libmeshoptimizer-dev
 )

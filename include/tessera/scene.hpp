@@ -26,14 +26,29 @@ struct Animation;  // tessera/animation.hpp: what changes from frame to frame
 inline constexpr int kMaxImageDimension = 16384;  // pixels, per side
 inline constexpr long long kMaxImagePixels = 1LL << 27;  // width × height: 134M pixels, ~2 GB of frame at 15 B/pixel
 
-// How a texture map extends past [0, 1]: GL_REPEAT or GL_CLAMP_TO_EDGE.
-enum class TextureWrap { repeat, clamp_to_edge };
+// How a texture map extends past [0, 1], per axis: GL_REPEAT, GL_CLAMP_TO_EDGE
+// or GL_MIRRORED_REPEAT.
+enum class TextureWrap { repeat, clamp_to_edge, mirrored_repeat };
+// GL's magnification (nearest, linear) and minification (all six) filters.
+enum class TextureFilter { nearest, linear, nearest_mipmap_nearest, linear_mipmap_nearest, nearest_mipmap_linear,
+                           linear_mipmap_linear };
 
-// A material's use of one texture: which image, and how it wraps.
+// A material's use of one texture: which image, how it is sampled (a GL
+// sampler: texture/texture.hpp, Sampler), and which texture coordinates it reads.
 struct TextureSlot {
     std::int32_t texture = -1;  // index into Scene::textures; -1 = no map
-    TextureWrap wrap = TextureWrap::repeat;
+    TextureWrap wrap_s = TextureWrap::repeat;  // along u
+    TextureWrap wrap_t = TextureWrap::repeat;  // along v
+    TextureFilter mag_filter = TextureFilter::linear;
+    TextureFilter min_filter = TextureFilter::linear_mipmap_linear;
+    // 0: Mesh::uvs, 1: Mesh::uvs1 (which the mesh must then have). Then, where
+    // uv_transformed, uv' = uv_transform·(u, v, 1) (glTF KHR_texture_transform, column-major).
+    int uv_set = 0;
+    bool uv_transformed = false;
+    glm::mat3 uv_transform{1.0f};
     bool present() const { return texture >= 0; }
+    // Reads uvs as they are: set 0, untransformed (the material pass's fast path).
+    bool plain_uvs() const { return uv_set == 0 && !uv_transformed; }
 };
 
 // How a material's albedo map turns into linear albedo.
@@ -93,8 +108,9 @@ struct Material {
 
     // false: back faces are culled, glTF's rule (front = counter-clockwise in
     // window space after the object's transform; a model matrix with a
-    // negative determinant makes clockwise the front). true draws both sides,
-    // as the reference does, with the same shading (no normal flip).
+    // negative determinant makes clockwise the front). true draws both sides;
+    // a back face is shaded with its normal and tangent frame negated (glTF's
+    // rule, for every scene), so it is lit from the side it shows.
     bool double_sided = true;
 
     // Alpha = alpha_factor × albedo map's alpha (where mapped) × the mesh's colour alpha (where
@@ -103,6 +119,13 @@ struct Material {
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_factor = 1.0f;  // [0, 1]
     float alpha_cutoff = 0.5f;  // mask: discarded below this; finite, >= 0 (glTF's default 0.5)
+
+    // KHR_materials_unlit: no lighting; the albedo (× its map × the vertex
+    // colour) is the colour shown, as glTF viewers draw it: the fragment's
+    // radiance is the one the display encoding turns into that colour
+    // (shade::radiance_for_display), so the tone curve leaves it as it is.
+    // Metallic, roughness, ao, normal and emissive are not used.
+    bool unlit = false;
 
     bool has_maps() const {
         return albedo_map.present() || metallic_map.present() || roughness_map.present() || ao_map.present() ||
@@ -162,6 +185,7 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;            // empty, or one per position; (0, 0) = top-left of a texture
+    std::vector<glm::vec2> uvs1;           // a second set (TextureSlot::uv_set 1): empty, or one per position
     std::vector<glm::vec4> tangents;       // empty, or one per position: xyz and handedness w = ±1 (glTF TANGENT)
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
     // Added for vertex colours (glTF COLOR_0): empty, or one per position, linear RGBA in

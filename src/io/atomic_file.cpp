@@ -31,6 +31,9 @@ void write_atomically(const fs::path& path, std::string_view what,
     }
     std::error_code error;
     if (reason.empty()) fs::rename(temporary, path, error);
+    // rename() does nothing when both names are links to one file already (a hard-linked copy of
+    // a file linked there before): the temporary name is then still there.
+    if (reason.empty() && !error) fs::remove(temporary, error);
     if (!reason.empty() || error) {
         std::error_code ignored;
         fs::remove(temporary, ignored);

@@ -118,6 +118,7 @@ struct SetupBatchInput {
     int width, height;              // viewport
     int samples;                    // 1, or 4: pixel boxes and coverage by the 4× MSAA sample positions
     Culling culling;
+    bool mirrored;                  // the model matrix mirrors: RasterTriangle::back_facing
 };
 
 struct SetupBatchOutput {

@@ -22,7 +22,9 @@ struct AssemblyContext {
     AssembledTriangles& out;
     int samples;
     Culling culling;
+    bool mirrored;
     std::span<const glm::vec4> colors;
+    std::span<const glm::vec2> uvs1;
 
     // The corners' vertex references of triangle t (its indices in range).
     std::array<std::uint32_t, 3> refs(std::size_t t) const {
@@ -32,7 +34,7 @@ struct AssemblyContext {
     // A triangle inside the guard band and the near and far planes.
     void set_up(const std::array<std::uint32_t, 3>& ref) const {
         const auto set_up = setup_triangle(
-            viewport, {frame.screen[ref[0]], frame.screen[ref[1]], frame.screen[ref[2]]}, ref, samples, culling);
+            viewport, {frame.screen[ref[0]], frame.screen[ref[1]], frame.screen[ref[2]]}, ref, samples, culling, mirrored);
         if (set_up) out.triangles.push_back(*set_up);
     }
 
@@ -49,17 +51,19 @@ struct AssemblyContext {
             } else {
                 corner_ref[i] = geometry::kClippedVertexBit | std::uint32_t(out.clipped_vertices.size());
                 out.clipped_vertices.push_back(polygon.corners[i]);
-                if (!colors.empty()) {
-                    const glm::vec3& w = polygon.weights[i];
+                const glm::vec3& w = polygon.weights[i];
+                if (!colors.empty())
                     out.clipped_colors.push_back(w.x * colors[indices[3 * t]] + w.y * colors[indices[3 * t + 1]] +
                                                  w.z * colors[indices[3 * t + 2]]);
-                }
+                if (!uvs1.empty())
+                    out.clipped_uvs1.push_back(w.x * uvs1[indices[3 * t]] + w.y * uvs1[indices[3 * t + 1]] +
+                                               w.z * uvs1[indices[3 * t + 2]]);
             }
         }
         for (int i = 1; i + 1 < polygon.count; ++i) {  // a fan around corner 0
             const auto set_up = setup_triangle(
                 viewport, {polygon.corners[0].clip_pos, polygon.corners[i].clip_pos, polygon.corners[i + 1].clip_pos},
-                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, samples, culling);
+                {corner_ref[0], corner_ref[i], corner_ref[i + 1]}, samples, culling, mirrored);
             if (set_up) out.triangles.push_back(*set_up);
         }
     }
@@ -97,6 +101,7 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
     in.width = c.viewport.width, in.height = c.viewport.height;
     in.samples = c.samples;
     in.culling = c.culling;
+    in.mirrored = c.mirrored;
     static_assert(kAssemblyRoom >= kSetupBatch);
     SetupBatchOutput batch;
     std::array<RasterTriangle, kSetupBatch> aside;  // a batch's records while the scalar code's are merged in
@@ -156,8 +161,10 @@ void assemble_in_batches(simd::Isa isa, const AssemblyContext& c, std::uint32_t 
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
-                        AssembledTriangles& out, int samples, Culling culling, std::span<const glm::vec4> colors) {
-    const AssemblyContext context{indices, first_vertex, frame, viewport, guard, out, samples, culling, colors};
+                        AssembledTriangles& out, int samples, Culling culling, std::span<const glm::vec4> colors,
+                        bool mirrored, std::span<const glm::vec2> uvs1) {
+    const AssemblyContext context{indices, first_vertex, frame, viewport, guard, out,
+                                  samples, culling, mirrored, colors, uvs1};
     if (isa == simd::Isa::scalar) assemble_one_by_one(context, vertex_count);
     else assemble_in_batches(isa, context, vertex_count);
 }

@@ -58,7 +58,8 @@ struct AssembledTriangles {
     RasterTriangles triangles;                             // in submission order
     std::vector<geometry::ShadedVertex> clipped_vertices;  // corners made by clipping (kClippedVertexBit refs)
     std::vector<glm::vec4> clipped_colors;  // beside clipped_vertices, for meshes with vertex colours only
-    void clear() { triangles.clear(), clipped_vertices.clear(), clipped_colors.clear(); }
+    std::vector<glm::vec2> clipped_uvs1;    // beside clipped_vertices, for meshes with a second uv set only
+    void clear() { triangles.clear(), clipped_vertices.clear(), clipped_colors.clear(), clipped_uvs1.clear(); }
 };
 
 // Appends to `out` the triangles of `indices` (three per triangle, relative to
@@ -70,11 +71,15 @@ struct AssembledTriangles {
 // samples: 1, or 4 for 4× MSAA. culling: which windings setup drops (clipping
 // keeps a triangle's winding, so its pieces are culled alike). colors: the
 // mesh's vertex colours (indexed like `indices`) or empty; a corner clipping
-// makes gets its colour interpolated as its other attributes are.
+// makes gets its colour interpolated as its other attributes are. mirrored:
+// the model matrix has a negative determinant (RasterTriangle::back_facing).
+// uvs1: the mesh's second uv set (Mesh::uvs1) or empty, interpolated for
+// clipping's corners as the colours are.
 void assemble_triangles(simd::Isa isa, std::span<const std::uint32_t> indices, std::uint32_t first_vertex,
                         std::uint32_t vertex_count, const FrameVertices& frame,
                         const geometry::Viewport& viewport, const geometry::GuardBand& guard,
                         AssembledTriangles& out, int samples = 1, Culling culling = Culling::none,
-                        std::span<const glm::vec4> colors = {});
+                        std::span<const glm::vec4> colors = {}, bool mirrored = false,
+                        std::span<const glm::vec2> uvs1 = {});
 
 }  // namespace tessera::raster

@@ -58,7 +58,7 @@ bool covers_a_sample(const RasterTriangle& t) {
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
                                              const std::array<std::uint32_t, 3>& vertex, int samples,
-                                             Culling culling) {
+                                             Culling culling, bool mirrored) {
     RasterTriangle t;
     for (int i = 0; i < 3; ++i) {
         t.x[i] = corners[i].x;
@@ -68,6 +68,8 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
     }
     std::int64_t double_area = edge_function(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
     if (double_area == 0 || culled(culling, double_area)) return std::nullopt;
+    // GL's front face turns counter-clockwise in window space: a negative area here.
+    t.back_facing = (double_area < 0) == mirrored ? 1u : 0u;
     if (double_area < 0) {
         std::swap(t.x[1], t.x[2]);
         std::swap(t.y[1], t.y[2]);
@@ -98,11 +100,11 @@ std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std
 
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
                                              const std::array<std::uint32_t, 3>& vertex, int samples,
-                                             Culling culling) {
+                                             Culling culling, bool mirrored) {
     return setup_triangle(viewport,
                           {geometry::to_screen(clip_pos[0], viewport), geometry::to_screen(clip_pos[1], viewport),
                            geometry::to_screen(clip_pos[2], viewport)},
-                          vertex, samples, culling);
+                          vertex, samples, culling, mirrored);
 }
 
 }  // namespace tessera::raster

@@ -23,6 +23,10 @@ struct alignas(64) RasterTriangle {
     float inv_area;                       // 1 / double area, where double area = edge function of corner 2 against edge 0→1 > 0
     std::array<float, 3> depth;           // window depth z_ndc·0.5 + 0.5, in [0, 1]
     std::array<std::uint32_t, 3> vertex;  // the corners' vertex references (see ShadedVertex)
+    // 1: the triangle shows its back (clockwise on screen in GL's window space, or
+    // counter-clockwise under a mirroring model matrix), so a double-sided material
+    // flips its normal there (glTF §3.9.5: gl_FrontFacing false). 0: its front.
+    std::uint32_t back_facing;
 };
 static_assert(sizeof(RasterTriangle) == 64);
 static_assert(kMaxImageDimension <= 32767, "pixel boxes are int16");
@@ -46,14 +50,16 @@ inline bool culled(Culling culling, std::int64_t double_area) {
 // triangle has no area, is culled, or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
 // With samples = 4 (raster/msaa.hpp) the test and the pixel box are about the
-// pixels' sample positions instead of their centres.
+// pixels' sample positions instead of their centres. mirrored: the object's
+// model matrix has a negative determinant, which swaps front and back
+// (RasterTriangle::back_facing).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<ScreenVertex, 3>& corners,
                                              const std::array<std::uint32_t, 3>& vertex, int samples = 1,
-                                             Culling culling = Culling::none);
+                                             Culling culling = Culling::none, bool mirrored = false);
 // The same from clip positions (each inside the near plane and the guard band).
 std::optional<RasterTriangle> setup_triangle(const Viewport& viewport, const std::array<glm::vec4, 3>& clip_pos,
                                              const std::array<std::uint32_t, 3>& vertex, int samples = 1,
-                                             Culling culling = Culling::none);
+                                             Culling culling = Culling::none, bool mirrored = false);
 
 // Edge function of the edge a→b at point p, all in fixed point: twice the
 // signed area of (a, b, p), positive when p lies inside a set-up triangle.

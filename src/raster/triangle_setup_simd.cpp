@@ -191,6 +191,7 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int last_x(in.width - 1), last_y(in.height - 1);
     const Mask cull_positive(in.culling == Culling::drop_positive_area);
     const Mask cull_negative(in.culling == Culling::drop_negative_area);
+    const Mask mirrored(in.mirrored);
     // The points a pixel is tested at: its centre, or its 4 samples
     // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
     // box holds the pixels with a point between the triangle's extremes.
@@ -299,7 +300,9 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
                                px_min | (px_max << 16), py_min | (py_max << 16),  // int16 pairs, low half first
                                inv_area, corner[0].depth, depth1, depth2,
                                refs[0], xsimd::select(swapped, refs[2], refs[1]),
-                               xsimd::select(swapped, refs[1], refs[2]), zero};
+                               xsimd::select(swapped, refs[1], refs[2]),
+                               // back_facing, as setup_triangle(): swapped (GL's front) unless mirrored
+                               xsimd::select(swapped ^ mirrored, zero, Int(1))};
         to_records(words, kept_bits, out.records + records);
         records += std::popcount(kept_bits);
     }

@@ -33,6 +33,7 @@ struct alignas(128) Chunk {
     bool alpha_tested = false;  // the object's material is masked: fragments take the alpha test
     bool blended = false;       // the object's material blends: drawn in the blend pass, after the opaque ones
     const glm::vec4* colors = nullptr;  // the mesh's vertex colours (Mesh::colors), or null
+    const glm::vec2* uvs1 = nullptr;    // the mesh's second uv set (Mesh::uvs1) where its material has maps, or null
     const Material* material = nullptr;  // the object's
     // The material has maps or blends, or the mesh has vertex colours: the
     // gather needs the whole shade::TriangleCorners, not just the corners.
@@ -49,6 +50,11 @@ struct alignas(128) Chunk {
     const glm::vec4& color(std::uint32_t ref, std::uint32_t first_vertex) const {
         return (ref & geometry::kClippedVertexBit) ? assembled.clipped_colors[ref & ~geometry::kClippedVertexBit]
                                                    : colors[ref - first_vertex];
+    }
+    // A corner's second uv (uvs1 set), as color().
+    const glm::vec2& uv1(std::uint32_t ref, std::uint32_t first_vertex) const {
+        return (ref & geometry::kClippedVertexBit) ? assembled.clipped_uvs1[ref & ~geometry::kClippedVertexBit]
+                                                   : uvs1[ref - first_vertex];
     }
 };
 

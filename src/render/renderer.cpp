@@ -105,9 +105,10 @@ void check_renderable(const Scene& scene) {
             throw std::invalid_argument("object " + std::to_string(o) + " refers to a missing mesh or material");
         const Mesh& mesh = scene.meshes[object.mesh];
         if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0 ||
-            (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()))
+            (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) ||
+            (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()))
             throw std::invalid_argument("mesh '" + mesh.name +
-                                        "' needs one normal (and colour, if any) per position and whole triangles");
+                                        "' needs one normal (and colour and second uv, if any) per position and whole triangles");
     }
     if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
         throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
@@ -134,10 +135,11 @@ void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
 // model matrix mirrors: a negative determinant swaps them (glTF's rule; a GL
 // renderer flips glFrontFace). The camera's matrices are the same for every
 // object, so the model matrix alone decides.
+bool mirrors(const Object& object) { return glm::determinant(glm::mat3(object.model)) < 0.0f; }
+
 raster::Culling culling_of(const Scene& scene, const Object& object) {
     if (scene.materials[object.material].double_sided) return raster::Culling::none;
-    return glm::determinant(glm::mat3(object.model)) < 0.0f ? raster::Culling::drop_negative_area
-                                                             : raster::Culling::drop_positive_area;
+    return mirrors(object) ? raster::Culling::drop_negative_area : raster::Culling::drop_positive_area;
 }
 
 }  // namespace
@@ -193,6 +195,7 @@ struct Renderer::Frame {
     std::size_t chunk_count = 0;
     std::vector<std::uint32_t> object_first_chunk;  // per object, its first chunk; then chunk_count
     std::vector<std::uint32_t> blend_chunks;       // the blended objects' chunks, in drawing order (geometry/draw_order.hpp)
+    bool any_unlit = false;                        // some material is unlit (shade::apply_unlit)
     raster::TileBinIndex tile_bins;                // per tile, the chunks' bins that are not empty
     raster::TileGrid grid;
     shade::ShadingLights lights;
@@ -395,10 +398,12 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
             chunk.blended = chunk.material->alpha_mode == AlphaMode::blend;
             const Mesh& mesh = scene.meshes[scene.objects[o].mesh];
             chunk.colors = mesh.colors.empty() ? nullptr : mesh.colors.data();
+            chunk.uvs1 = mesh.uvs1.empty() || !chunk.material->has_maps() ? nullptr : mesh.uvs1.data();
             chunk.beyond_plain = chunk.material->has_maps() || chunk.colors != nullptr || chunk.blended;
         }
     }
     object_first_chunk.back() = std::uint32_t(chunk_count);
+    any_unlit = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
     blend_chunks.clear();
     for (const std::uint32_t o : geometry::blended_objects_back_to_front(scene))
         for (std::uint32_t c = object_first_chunk[o]; c < object_first_chunk[o + 1]; ++c) blend_chunks.push_back(c);
@@ -426,7 +431,9 @@ void Renderer::Frame::assemble_and_bin(const Scene& scene) {
         raster::assemble_triangles(isa, indices, first_vertex[chunk.object],
                                    std::uint32_t(scene.meshes[object.mesh].positions.size()), frame, viewport, guard,
                                    chunk.assembled, scene.msaa, culling_of(scene, object),
-                                   {chunk.colors, chunk.colors ? scene.meshes[object.mesh].colors.size() : 0});
+                                   {chunk.colors, chunk.colors ? scene.meshes[object.mesh].colors.size() : 0},
+                                   mirrors(object),
+                                   {chunk.uvs1, chunk.uvs1 ? scene.meshes[object.mesh].uvs1.size() : 0});
         const auto t1 = Clock::now();
         chunk.bins.build(grid, chunk.assembled.triangles);
         const auto t2 = Clock::now();
@@ -680,9 +687,12 @@ shade::TriangleCorners Renderer::Frame::corners_of(const Scene& scene, std::uint
     shade::TriangleCorners corners{{&chunk.vertex(t.vertex[0], vertices), &chunk.vertex(t.vertex[1], vertices),
                                     &chunk.vertex(t.vertex[2], vertices)},
                                    &scene.materials[object.material]};
+    corners.back_facing = t.back_facing != 0;
     if (corners.material->has_maps()) describe_for_textures(t, scene.meshes[object.mesh], corners);
     if (chunk.colors) [[unlikely]]
         for (int k = 0; k < 3; ++k) corners.color[k] = &chunk.color(t.vertex[k], first_vertex[chunk.object]);
+    if (chunk.uvs1) [[unlikely]]
+        for (int k = 0; k < 3; ++k) corners.uv1[k] = &chunk.uv1(t.vertex[k], first_vertex[chunk.object]);
     return corners;
 }
 
@@ -746,6 +756,8 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
             s.fragment_lights += count * lights.count();
         }
         shade::add_emission(s.material_runs, s.fragments);
+        if (any_unlit) [[unlikely]]
+            shade::apply_unlit(s.material_runs, s.fragments);
     }
     s.fragments_shaded += count;
     return count;

@@ -9,10 +9,14 @@ namespace tessera {
 
 // The reference demo's UV sphere, computed exactly as its C++ code does (in
 // float, with the same operation order), so positions match it bit for bit.
-// Note the reference's triangles (i0, i1, i2) and (i0, i2, i3) are clockwise
-// when seen from outside; the demo draws without face culling, so we keep its
-// order rather than "fix" it. The first row of triangles touching each pole is
-// degenerate (two corners at the pole), also as in the reference.
+// The reference's triangles (i0, i1, i2) and (i0, i2, i3) are clockwise when
+// seen from outside (it draws without face culling); here each has corners 1
+// and 2 swapped, counter-clockwise from outside, so that the outside is the
+// front face: culled when single-sided, and not a back face whose normal a
+// double-sided material flips. Triangle setup orders corners 1 and 2 by the
+// sign of the area, so it makes the same records either way: the images are
+// the reference's bit for bit. The first row of triangles touching each pole
+// is degenerate (two corners at the pole), also as in the reference.
 Mesh make_sphere_mesh() {
     constexpr std::uint32_t kSegmentsX = 64;
     constexpr std::uint32_t kSegmentsY = 64;
@@ -44,7 +48,7 @@ Mesh make_sphere_mesh() {
             const std::uint32_t i1 = (y + 1) * (kSegmentsX + 1) + x;
             const std::uint32_t i2 = (y + 1) * (kSegmentsX + 1) + x + 1;
             const std::uint32_t i3 = y * (kSegmentsX + 1) + x + 1;
-            mesh.indices.insert(mesh.indices.end(), {i0, i1, i2, i0, i2, i3});
+            mesh.indices.insert(mesh.indices.end(), {i0, i2, i1, i0, i3, i2});
         }
     }
     return mesh;

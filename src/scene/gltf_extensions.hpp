@@ -16,11 +16,22 @@ namespace tessera::gltf {
 // The extensions read (gltf_import.hpp says how).
 inline constexpr std::string_view kSupportedExtensions[] = {
     "EXT_meshopt_compression",
+    "EXT_texture_avif",
+    "EXT_texture_webp",
     "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
+};
+
+// Material extensions that change shading beyond the reference shader: a
+// file that uses them is drawn without them, with one warning each saying so.
+inline constexpr std::string_view kIgnoredShadingExtensions[] = {
+    "KHR_materials_anisotropy", "KHR_materials_clearcoat",    "KHR_materials_ior",
+    "KHR_materials_iridescence", "KHR_materials_sheen",       "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_volume",
 };
 
 bool is_supported_extension(std::string_view name);

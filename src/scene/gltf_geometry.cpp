@@ -44,6 +44,7 @@ void make_flat_normals(Mesh& mesh, std::vector<std::uint32_t>& sources) {
     };
     unweld(mesh.positions);
     unweld(mesh.uvs);
+    unweld(mesh.uvs1);
     unweld(mesh.tangents);
     unweld(mesh.colors);
     mesh.normals.resize(mesh.positions.size());
@@ -128,7 +129,8 @@ void read_colors(const tinygltf::Model& model, const AccessorReader& reader, int
 }  // namespace
 
 PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                             const std::string& source, const std::string& label, int texcoord_set) {
+                             const std::string& source, const std::string& label, int texcoord_set,
+                             int second_texcoord_set) {
     PrimitiveMesh result;
     const int mode = primitive.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -157,11 +159,15 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
         mesh.normals = read_vectors<3>(reader.check(n, label + " NORMAL", rules.normal));
         check_count(mesh.normals.size(), "NORMAL");
     }
-    const std::string texcoord = "TEXCOORD_" + std::to_string(texcoord_set);
-    if (const int uv = attribute(primitive, texcoord.c_str()); uv >= 0) {
-        mesh.uvs = read_vectors<2>(reader.check(uv, label + " " + texcoord, rules.texcoord));
-        check_count(mesh.uvs.size(), texcoord.c_str());
-    }
+    const auto read_uvs = [&](int set, std::vector<glm::vec2>& uvs) {
+        const std::string texcoord = "TEXCOORD_" + std::to_string(set);
+        if (const int uv = attribute(primitive, texcoord.c_str()); uv >= 0) {
+            uvs = read_vectors<2>(reader.check(uv, label + " " + texcoord, rules.texcoord));
+            check_count(uvs.size(), texcoord.c_str());
+        }
+    };
+    read_uvs(texcoord_set, mesh.uvs);
+    if (second_texcoord_set >= 0) read_uvs(second_texcoord_set, mesh.uvs1);
     if (const int t = attribute(primitive, "TANGENT"); t >= 0) {
         mesh.tangents = read_vectors<4>(reader.check(t, label + " TANGENT", rules.tangent));
         check_count(mesh.tangents.size(), "TANGENT");

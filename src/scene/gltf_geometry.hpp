@@ -27,9 +27,11 @@ struct PrimitiveMesh {
 };
 
 // `label` names the primitive in messages, e.g. "meshes[2] 'Body' primitives[0]".
-// Mesh::uvs come from TEXCOORD_<texcoord_set> (the set its material's maps read).
+// Mesh::uvs come from TEXCOORD_<texcoord_set> (the set its material's maps read),
+// Mesh::uvs1 from TEXCOORD_<second_texcoord_set> where that is >= 0 (gltf_materials.hpp, MaterialUvs).
 PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                             const std::string& source, const std::string& label, int texcoord_set = 0);
+                             const std::string& source, const std::string& label, int texcoord_set = 0,
+                             int second_texcoord_set = -1);
 
 // Accessor `index` read as floats after the same checks as a primitive's
 // attributes: element i's component c at [i × components + c], normalized

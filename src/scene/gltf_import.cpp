@@ -496,12 +496,27 @@ private:
         for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
             const std::string label = indexed("meshes", std::size_t(mesh_index), mesh.name) + " primitives[" + std::to_string(p) + "]";
             tally_primitive(mesh.primitives[p], label);
-            const gltf::UvMapping uv_mapping = uv_mapping_of(mesh.primitives[p].material);
+            const gltf::MaterialUvs uvs = uv_mapping_of(mesh.primitives[p].material);
+            const gltf::UvMapping& uv_mapping = uvs.baked;
             gltf::PrimitiveMesh converted =
-                gltf::read_primitive(model_, mesh.primitives[p], source_, label, uv_mapping.set);
+                gltf::read_primitive(model_, mesh.primitives[p], source_, label, uv_mapping.set, uvs.second_set);
             if (!converted.is_surface) {
                 ++content_.skipped_primitives;
                 continue;
+            }
+            // A map reading a set above 0 that the primitive lacks is refused, as the
+            // glTF validator refuses it (MESH_PRIMITIVE_TOO_FEW_TEXCOORDS). Without
+            // TEXCOORD_0 the uvs are (0, 0), as they always were: one texel everywhere.
+            const bool has_maps = mesh.primitives[p].material >= 0 && uv_mapping_has_maps(mesh.primitives[p].material);
+            const auto require_set = [&](int set, bool present) {
+                if (!present && set > 0)
+                    fail(label + ": material " + std::to_string(mesh.primitives[p].material) + " has a map with texCoord " +
+                         std::to_string(set) + " but the primitive has no TEXCOORD_" + std::to_string(set));
+            };
+            if (has_maps) require_set(uv_mapping.set, !converted.mesh.uvs.empty());
+            if (uvs.second_set >= 0) {
+                require_set(uvs.second_set, !converted.mesh.uvs1.empty());
+                if (converted.mesh.uvs1.empty()) converted.mesh.uvs1.assign(converted.mesh.positions.size(), glm::vec2(0.0f));
             }
             if (uv_mapping.transformed)
                 for (glm::vec2& uv : converted.mesh.uvs) uv = glm::vec2(uv_mapping.transform * glm::vec3(uv, 1.0f));
@@ -518,13 +533,21 @@ private:
     // ---- Materials and textures
 
     // The texture coordinates a glTF material's maps read (-1: the default material, no maps).
-    gltf::UvMapping uv_mapping_of(int gltf_material) {
+    gltf::MaterialUvs uv_mapping_of(int gltf_material) {
         if (gltf_material < 0 || std::size_t(gltf_material) >= model_.materials.size()) return {};
         const auto known = uv_mappings_.find(gltf_material);
         if (known != uv_mappings_.end()) return known->second;
-        const gltf::UvMapping mapping = gltf::read_uv_mapping(model_, std::size_t(gltf_material), source_, content_.warnings);
+        const gltf::MaterialUvs mapping =
+            gltf::read_material_uvs(model_, std::size_t(gltf_material), source_, content_.warnings);
         uv_mappings_.emplace(gltf_material, mapping);
         return mapping;
+    }
+
+    bool uv_mapping_has_maps(int gltf_material) const {
+        const tinygltf::Material& m = model_.materials[std::size_t(gltf_material)];
+        return m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+               m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+               m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0;
     }
 
     std::uint32_t material_index(int gltf_material, const std::string& primitive_label) {
@@ -539,7 +562,7 @@ private:
                                                     [this](int texture, texture::ColorSpace space, const std::string& what) {
                                                         return texture_slot(texture, space, what);
                                                     },
-                                                    content_.warnings));
+                                                    uv_mapping_of(gltf_material), content_.warnings));
         const auto index = std::uint32_t(content_.materials.size() - 1);
         converted_materials_.emplace(gltf_material, index);
         return index;
@@ -553,20 +576,14 @@ private:
                  std::to_string(model_.textures.size()) + " textures");
         const tinygltf::Texture& gltf_texture = model_.textures[std::size_t(texture_index)];
         const std::string texture_label = "textures[" + std::to_string(texture_index) + "]";
-        if (gltf_texture.source < 0 || std::size_t(gltf_texture.source) >= model_.images.size())
-            fail(texture_label + " (" + what + ") has image source " + std::to_string(gltf_texture.source) +
-                 " but the file has " + std::to_string(model_.images.size()) +
-                 " images (images given only by extensions, such as KTX2 or WebP, are not supported)");
+        const int source = image_source(gltf_texture, texture_label + " (" + what + ")");
         if (gltf_texture.sampler >= 0) {
             if (std::size_t(gltf_texture.sampler) >= model_.samplers.size())
                 fail(texture_label + " uses sampler " + std::to_string(gltf_texture.sampler) + " but the file has " +
                      std::to_string(model_.samplers.size()) + " samplers");
-            // wrapT is ignored and MIRRORED_REPEAT repeats: Texture has one wrap mode, without mirroring.
-            slot.wrap = model_.samplers[std::size_t(gltf_texture.sampler)].wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
-                            ? TextureWrap::clamp_to_edge
-                            : TextureWrap::repeat;
+            read_sampler(std::size_t(gltf_texture.sampler), slot);
         }
-        const std::pair key{gltf_texture.source, color_space};
+        const std::pair key{source, color_space};
         const auto known = texture_indices_.find(key);
         if (known != texture_indices_.end()) {
             slot.texture = known->second;
@@ -576,6 +593,70 @@ private:
             pending_images_.push_back(key);
         }
         return slot;
+    }
+
+    // How to make a KTX2 (Basis Universal) image readable: Khronos' KTX-Software.
+    static constexpr const char* kKtx2Advice =
+        "convert the image to PNG, e.g. with KTX-Software's `ktx transcode --target rgba8 in.ktx2 rgba.ktx2` and "
+        "`ktx extract rgba.ktx2 out.png`, and make the texture's source that PNG";
+
+    // The image a texture shows: EXT_texture_webp's or EXT_texture_avif's source
+    // where the texture has one (a file written for them may have no other),
+    // else its own. KHR_texture_basisu (KTX2) alone is refused, saying how to
+    // convert it: no Debian package transcodes Basis Universal.
+    int image_source(const tinygltf::Texture& texture, const std::string& label) const {
+        for (const char* name : {"EXT_texture_webp", "EXT_texture_avif"}) {
+            const auto extension = texture.extensions.find(name);
+            if (extension == texture.extensions.end()) continue;
+            const tinygltf::Value& source = extension->second.Get("source");
+            if (!source.IsInt() || source.GetNumberAsInt() < 0 ||
+                std::size_t(source.GetNumberAsInt()) >= model_.images.size())
+                fail(label + " " + name + " source is not an image index below " + std::to_string(model_.images.size()));
+            return source.GetNumberAsInt();
+        }
+        if (texture.source >= 0 && std::size_t(texture.source) < model_.images.size()) return texture.source;
+        if (texture.extensions.count("KHR_texture_basisu"))
+            fail(label + " has only a KHR_texture_basisu (KTX2) image, which is not supported: " + kKtx2Advice);
+        fail(label + " has image source " + std::to_string(texture.source) + " but the file has " +
+             std::to_string(model_.images.size()) + " images");
+    }
+
+    // GL's enums as glTF stores them; any other value is refused.
+    void read_sampler(std::size_t index, TextureSlot& slot) const {
+        const tinygltf::Sampler& sampler = model_.samplers[index];
+        const std::string label = indexed("samplers", index, sampler.name);
+        const auto wrap = [&](int value, const char* what) {
+            switch (value) {
+                case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::repeat;
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::clamp_to_edge;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::mirrored_repeat;
+                default: break;
+            }
+            fail(label + " " + what + " is " + std::to_string(value) +
+                 ", expected 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT)");
+        };
+        slot.wrap_s = wrap(sampler.wrapS, "wrapS");
+        slot.wrap_t = wrap(sampler.wrapT, "wrapT");
+        switch (sampler.magFilter) {
+            case -1: break;  // absent: the default, LINEAR
+            case TINYGLTF_TEXTURE_FILTER_NEAREST: slot.mag_filter = TextureFilter::nearest; break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR: slot.mag_filter = TextureFilter::linear; break;
+            default:
+                fail(label + " magFilter is " + std::to_string(sampler.magFilter) +
+                     ", expected 9728 (NEAREST) or 9729 (LINEAR)");
+        }
+        switch (sampler.minFilter) {
+            case -1: break;  // absent: the default, LINEAR_MIPMAP_LINEAR
+            case TINYGLTF_TEXTURE_FILTER_NEAREST: slot.min_filter = TextureFilter::nearest; break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR: slot.min_filter = TextureFilter::linear; break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: slot.min_filter = TextureFilter::nearest_mipmap_nearest; break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: slot.min_filter = TextureFilter::linear_mipmap_nearest; break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: slot.min_filter = TextureFilter::nearest_mipmap_linear; break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: slot.min_filter = TextureFilter::linear_mipmap_linear; break;
+            default:
+                fail(label + " minFilter is " + std::to_string(sampler.minFilter) +
+                     ", expected 9728, 9729, 9984, 9985, 9986 or 9987 (NEAREST ... LINEAR_MIPMAP_LINEAR)");
+        }
     }
 
     // Decoded in parallel: a textured model's images are most of its load time.
@@ -589,7 +670,8 @@ private:
 
     texture::Texture decode_image(std::size_t index, texture::ColorSpace color_space) const {
         const tinygltf::Image& image = model_.images[index];
-        const std::string label = indexed("images", index, image.name);
+        std::string label = indexed("images", index, image.name);
+        if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) label += " (" + quoted(image.uri) + ")";
         if (image.image.empty()) {
             if (!image.uri.empty()) {
                 if (!options_.read_external_files) fail(label + ": external image " + quoted(image.uri) + " is not read here");
@@ -598,10 +680,12 @@ private:
             fail(label + " has no data");
         }
         const std::vector<unsigned char>& bytes = image.image;
-        const bool png = bytes.size() >= 4 && std::memcmp(bytes.data(), "\x89PNG", 4) == 0;
-        const bool jpeg = bytes.size() >= 2 && bytes[0] == 0xFF && bytes[1] == 0xD8;
-        if (!png && !jpeg)
-            fail(label + " is neither PNG nor JPEG (mimeType " + quoted(image.mimeType) + "); glTF images are PNG or JPEG");
+        if (!texture::Texture::can_decode(bytes)) {
+            if (bytes.size() >= 12 && std::memcmp(bytes.data(), "\xABKTX 20\xBB", 8) == 0)
+                fail(label + " is a KTX2 image (KHR_texture_basisu), which is not supported: " + kKtx2Advice);
+            fail(label + " is neither PNG, JPEG, WebP nor AVIF (mimeType " + quoted(image.mimeType) +
+                 "); glTF images are PNG or JPEG, or WebP and AVIF with EXT_texture_webp and EXT_texture_avif");
+        }
         try {
             return texture::Texture::decode(bytes, label, color_space);
         } catch (const texture::TextureError& e) {
@@ -696,7 +780,7 @@ private:
     std::vector<gltf::MeshSource> mesh_sources_;                     // per content_.meshes entry: its glTF primitive
     std::vector<int> object_nodes_;                                  // per content_.objects entry: its node
     std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
-    std::map<int, gltf::UvMapping> uv_mappings_;                     // glTF material -> its maps' uvs
+    std::map<int, gltf::MaterialUvs> uv_mappings_;                     // glTF material -> its maps' uvs
     std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
     std::vector<std::pair<int, texture::ColorSpace>> pending_images_;  // what content_.textures[i] decodes
 };

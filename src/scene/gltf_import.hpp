@@ -32,22 +32,30 @@
 //   (sRGB); metallic/roughnessFactor × metallicRoughnessTexture (B and G of one
 //   linear texture); occlusionTexture (R, strength); normalTexture (scale);
 //   emissiveFactor × emissiveTexture (sRGB), × KHR_materials_emissive_strength.
-//   doubleSided false (the default) culls back faces (Material::double_sided).
+//   doubleSided false (the default) culls back faces (Material::double_sided);
+//   true draws them with the normal and tangent frame flipped (lit from their side).
 //   alphaMode MASK: alpha = baseColorFactor[3] × baseColorTexture's alpha × COLOR_0's
 //   alpha; a fragment below alphaCutoff is discarded (Material::alpha_mode). BLEND:
 //   that alpha composites the primitive over what lies behind it, drawn after the
-//   opaque ones, back to front (AlphaMode::blend, src/image/blend.hpp). Other material
-//   extensions (transmission, specular-glossiness, ...) are ignored. A primitive
-//   without a material gets glTF's default (white, metallic 1, roughness 1).
+//   opaque ones, back to front (AlphaMode::blend, src/image/blend.hpp). OPAQUE
+//   ignores alpha; it is straight (colour never multiplied by it).
+//   KHR_materials_unlit: the base colour is shown as is (Material::unlit). Material
+//   extensions that change shading beyond the reference (transmission, volume,
+//   clearcoat, sheen, specular, ior, iridescence, anisotropy) are ignored with one
+//   warning each. A primitive without a material gets glTF's default (white,
+//   metallic 1, roughness 1).
 // - Textures: one Texture per (image, colour space), only for images materials
-//   use, decoded in parallel (Texture::decode: PNG or JPEG, straight to RGBA8,
-//   sRGB maps kept encoded). A material's maps read TEXCOORD_<texCoord>, transformed by
-//   KHR_texture_transform (offset, rotation, scale, texCoord), baked into the
-//   primitive's uvs; maps of one material that disagree use the first map's
-//   set and transform, with a warning (gltf_materials.hpp: UvMapping).
-//   Wrapping follows the sampler's wrapS; wrapT is ignored; MIRRORED_REPEAT
-//   wraps as REPEAT. Filters are always trilinear. glTF's UV origin (top-left)
-//   is Texture's: no flip.
+//   use, decoded in parallel (Texture::decode: PNG, JPEG, WebP, AVIF, straight to
+//   RGBA8, sRGB maps kept encoded); EXT_texture_webp's and EXT_texture_avif's
+//   source wins over the texture's own. KHR_texture_basisu (KTX2) alone is
+//   refused, saying how to convert it. Each map reads TEXCOORD_<texCoord>, transformed
+//   by its KHR_texture_transform (offset, rotation, scale, texCoord): baked into
+//   the uvs when all of a material's maps agree, else per map when sampling
+//   (a second set in Mesh::uvs1; gltf_materials.hpp: MaterialUvs). A map on a set
+//   above 0 that the primitive lacks is refused; without TEXCOORD_0 the uvs are 0.
+//   Samplers: wrapS and wrapT (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT), magFilter
+//   and minFilter as GL defines them (default LINEAR, LINEAR_MIPMAP_LINEAR); other
+//   values are refused. glTF's UV origin (top-left) is Texture's: no flip.
 // - Cameras: the first perspective camera met in the node walk (depth first,
 //   in node order), or the one --camera NAME|INDEX selects. It looks down its node's -Z with +Y up; yfov, znear, zfar
 //   (absent = infinite: a far plane past the model's bounds is chosen) and

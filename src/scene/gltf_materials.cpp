@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scene/gltf_geometry.hpp"
 
@@ -76,7 +77,8 @@ glm::vec3 color_factor(const std::vector<double>& values, std::size_t expected_s
 }
 
 Material read_material(const tinygltf::Model& model, std::size_t index, const std::string& source,
-                       const TextureSlotMaker& texture_slot, [[maybe_unused]] std::vector<std::string>& warnings) {
+                       const TextureSlotMaker& texture_slot, const MaterialUvs& uvs,
+                       [[maybe_unused]] std::vector<std::string>& warnings) {
     const tinygltf::Material& m = model.materials[index];
     const std::string label = indexed("materials", index, m.name);
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
@@ -112,6 +114,21 @@ Material read_material(const tinygltf::Model& model, std::size_t index, const st
     material.emissive_map = texture_slot(m.emissiveTexture.index, ColorSpace::srgb, label + " emissiveTexture");
     material.double_sided = m.doubleSided;  // glTF's default is false: back faces culled
     read_alpha(m, pbr, label, source, material);
+    // Each slot reads its map's texture coordinates (the metallic and roughness maps are one).
+    TextureSlot* const slots[kMapCount][2] = {{&material.albedo_map, nullptr},
+                                              {&material.metallic_map, &material.roughness_map},
+                                              {&material.normal_map, nullptr},
+                                              {&material.ao_map, nullptr},
+                                              {&material.emissive_map, nullptr}};
+    for (std::size_t k = 0; k < kMapCount; ++k)
+        for (TextureSlot* slot : slots[k])
+            if (slot != nullptr) {
+                slot->uv_set = uvs.maps[k].uv_set;
+                slot->uv_transformed = uvs.maps[k].transformed;
+                slot->uv_transform = uvs.maps[k].transform;
+            }
+    // KHR_materials_unlit: the base colour is what is shown (Material::unlit).
+    material.unlit = m.extensions.count("KHR_materials_unlit") > 0;
     return material;
 }
 
@@ -163,27 +180,48 @@ UvMapping mapping_of(const Info& info, const std::string& what, const std::strin
 
 }  // namespace
 
-UvMapping read_uv_mapping(const tinygltf::Model& model, std::size_t material_index, const std::string& source,
-                          std::vector<std::string>& warnings) {
+MaterialUvs read_material_uvs(const tinygltf::Model& model, std::size_t material_index, const std::string& source,
+                              std::vector<std::string>& warnings) {
     const tinygltf::Material& m = model.materials[material_index];
     const std::string label = indexed("materials", material_index, m.name);
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-    std::vector<UvMapping> mappings;
-    const auto add = [&](const auto& info, const char* what) {
-        if (info.index >= 0) mappings.push_back(mapping_of(info, label + " " + what, source));
+    std::array<std::optional<UvMapping>, kMapCount> mappings;
+    const auto add = [&](std::size_t k, const auto& info, const char* what) {
+        if (info.index >= 0) mappings[k] = mapping_of(info, label + " " + what, source);
     };
-    add(pbr.baseColorTexture, "baseColorTexture");
-    add(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
-    add(m.normalTexture, "normalTexture");
-    add(m.occlusionTexture, "occlusionTexture");
-    add(m.emissiveTexture, "emissiveTexture");
-    if (mappings.empty()) return {};
-    for (const UvMapping& other : mappings) {
-        if (other == mappings.front()) continue;
-        warnings.push_back(label + ": its maps use different texture coordinates or transforms; all use the first map's");
-        break;
+    add(0, pbr.baseColorTexture, "baseColorTexture");
+    add(1, pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
+    add(2, m.normalTexture, "normalTexture");
+    add(3, m.occlusionTexture, "occlusionTexture");
+    add(4, m.emissiveTexture, "emissiveTexture");
+    MaterialUvs uvs;
+    const auto first = std::find_if(mappings.begin(), mappings.end(), [](const auto& o) { return o.has_value(); });
+    if (first == mappings.end()) return uvs;
+    const bool all_agree = std::all_of(mappings.begin(), mappings.end(), [&](const auto& o) { return !o || *o == **first; });
+    if (all_agree) {
+        uvs.baked = **first;  // the fast path: one baked mapping, slots read uvs as they are
+        return uvs;
     }
-    return mappings.front();
+    uvs.baked.set = (*first)->set;
+    bool warned = false;
+    for (std::size_t k = 0; k < kMapCount; ++k) {
+        if (!mappings[k]) continue;
+        const UvMapping& mapping = *mappings[k];
+        MaterialUvs::Map& map = uvs.maps[k];
+        if (mapping.set != uvs.baked.set) {
+            if (uvs.second_set < 0) uvs.second_set = mapping.set;
+            if (mapping.set == uvs.second_set) {
+                map.uv_set = 1;
+            } else if (!warned) {
+                warnings.push_back(label + ": its maps read three or more texture coordinate sets; those past the "
+                                           "second read TEXCOORD_" + std::to_string(uvs.baked.set));
+                warned = true;
+            }
+        }
+        map.transformed = mapping.transformed;
+        map.transform = mapping.transform;
+    }
+    return uvs;
 }
 
 }  // namespace tessera::gltf

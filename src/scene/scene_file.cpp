@@ -268,24 +268,41 @@ private:
     Material read_material(const toml::table& table, const std::string& name) {
         check_keys(table, name, {"albedo", "metallic", "roughness", "ao", "emissive", "albedo_map", "albedo_map_encoding",
                                  "metallic_map", "roughness_map", "ao_map", "normal_map", "normal_scale",
-                                 "emissive_map", "wrap", "double_sided", "alpha_mode", "alpha", "alpha_cutoff"});
+                                 "emissive_map", "wrap", "wrap_s", "wrap_t", "mag_filter", "min_filter",
+                                 "double_sided", "alpha_mode", "alpha", "alpha_cutoff", "unlit"});
         Material material;
-        TextureWrap wrap = TextureWrap::repeat;
-        if (const toml::node* n = table.get("wrap")) {
-            const std::string text = read_string(*n, child(name, "wrap"));
-            if (text == "clamp_to_edge") {
-                wrap = TextureWrap::clamp_to_edge;
-            } else if (text != "repeat") {
-                fail_at(n->source(), "expected 'repeat' or 'clamp_to_edge' for '" + child(name, "wrap") + "', got '" +
-                                         text + "'");
+        // One name out of `names` (the enum's values in order) for key.
+        const auto choice = [&](const char* key, std::initializer_list<const char*> names, int fallback) {
+            const toml::node* n = table.get(key);
+            if (n == nullptr) return fallback;
+            const std::string text = read_string(*n, child(name, key));
+            int index = 0;
+            for (const char* option : names) {
+                if (text == option) return index;
+                ++index;
             }
-        }
+            std::string expected;
+            index = 0;
+            for (const char* option : names)
+                expected += (index++ == 0 ? "'" : index == int(names.size()) ? " or '" : ", '") + std::string(option) + "'";
+            fail_at(n->source(), "expected " + expected + " for '" + child(name, key) + "', got '" + text + "'");
+        };
+        const std::initializer_list<const char*> wraps = {"repeat", "clamp_to_edge", "mirrored_repeat"};
+        TextureSlot sampling;  // every map of the material is sampled alike
+        const int wrap = choice("wrap", wraps, 0);
+        sampling.wrap_s = TextureWrap(choice("wrap_s", wraps, wrap));
+        sampling.wrap_t = TextureWrap(choice("wrap_t", wraps, wrap));
+        sampling.mag_filter = TextureFilter(choice("mag_filter", {"nearest", "linear"}, 1));
+        sampling.min_filter = TextureFilter(choice("min_filter",
+                                                   {"nearest", "linear", "nearest_mipmap_nearest", "linear_mipmap_nearest",
+                                                    "nearest_mipmap_linear", "linear_mipmap_linear"},
+                                                   5));
         // A map multiplies its factor; with a map and no factor, the factor is 1.
         const auto map = [&](std::string_view key, texture::ColorSpace color_space, TextureSlot& slot) {
             const toml::node* n = table.get(key);
             if (n == nullptr) return false;
+            slot = sampling;
             slot.texture = texture_index(*n, child(name, key), color_space);
-            slot.wrap = wrap;
             return true;
         };
         texture::ColorSpace albedo_space = texture::ColorSpace::linear;
@@ -326,6 +343,7 @@ private:
             material.normal_scale = read_float(*n, child(name, "normal_scale"));
         }
         if (const toml::node* n = table.get("double_sided")) material.double_sided = read_bool(*n, child(name, "double_sided"));
+        if (const toml::node* n = table.get("unlit")) material.unlit = read_bool(*n, child(name, "unlit"));
         if (const toml::node* n = table.get("alpha_mode")) {
             const std::string text = read_string(*n, child(name, "alpha_mode"));
             if (text == "mask") {

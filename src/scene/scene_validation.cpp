@@ -120,6 +120,8 @@ void validate_meshes(const Scene& scene) {
             fail(scene, mesh_label(scene, m), " has ", mesh.normals.size(), " normals for ", vertices,
                  " positions");
         }
+        if (!mesh.uvs1.empty() && mesh.uvs1.size() != vertices)
+            fail(scene, mesh_label(scene, m), " has ", mesh.uvs1.size(), " second-set uvs for ", vertices, " positions");
         if (!mesh.uvs.empty() && mesh.uvs.size() != vertices) {
             fail(scene, mesh_label(scene, m), " has ", mesh.uvs.size(), " uvs for ", vertices, " positions");
         }
@@ -162,6 +164,15 @@ void validate_objects(const Scene& scene) {
             for (int r = 0; r < 4; ++r) {
                 if (!std::isfinite(object.model[c][r])) fail(scene, "objects[", o, "] has a non-finite model matrix");
             }
+        }
+        // A map on the second uv set needs a mesh that has one (TextureSlot::uv_set).
+        const Material& m = scene.materials[object.material];
+        for (const TextureSlot* slot : {&m.albedo_map, &m.metallic_map, &m.roughness_map, &m.ao_map, &m.normal_map,
+                                        &m.emissive_map}) {
+            if (!slot->present() || slot->uv_set == 0) continue;
+            if (slot->uv_set != 1 || scene.meshes[object.mesh].uvs1.empty())
+                fail(scene, "objects[", o, "]: its material reads uv set ", slot->uv_set,
+                     ", which its mesh does not have (sets: 0, and 1 where the mesh has a second set)");
         }
     }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "shade/pbr_reference.hpp"
 #include "shade/material_kernels.hpp"
 #include "texture/texture.hpp"
 
@@ -63,13 +64,38 @@ glm::vec3 normal_from_map_tangent(const glm::vec3& tangent_normal, const glm::ve
 void MaterialScratch::reserve(std::size_t max_fragments) {
     const std::size_t n = padded_count(max_fragments);
     for (std::vector<float>* v : {&lod, &r, &g, &b, &a}) v->resize(n);
+    for (std::vector<float>& v : uv) v.resize(n);
+}
+
+texture::Sampler sampler_of(const TextureSlot& slot) {
+    const auto wrap = [](TextureWrap w) {
+        switch (w) {
+            case TextureWrap::clamp_to_edge: return texture::Wrap::clamp_to_edge;
+            case TextureWrap::mirrored_repeat: return texture::Wrap::mirrored_repeat;
+            case TextureWrap::repeat: break;
+        }
+        return texture::Wrap::repeat;
+    };
+    return {wrap(slot.wrap_s), wrap(slot.wrap_t), texture::Filter(int(slot.mag_filter)),
+            texture::Filter(int(slot.min_filter))};
+}
+
+void transform_uvs(const glm::mat3& m, std::size_t count, const float* const (&in)[6], float* const (&out)[6]) {
+    // (u, v) → M·(u, v, 1); a derivative (du, dv) → M's linear part·(du, dv).
+    for (std::size_t i = 0; i < count; ++i) {
+        const float u = in[0][i], v = in[1][i];
+        out[0][i] = m[0][0] * u + m[1][0] * v + m[2][0];
+        out[1][i] = m[0][1] * u + m[1][1] * v + m[2][1];
+        for (int d = 2; d < 6; d += 2) {
+            const float du = in[d][i], dv = in[d + 1][i];
+            out[d][i] = m[0][0] * du + m[1][0] * dv;
+            out[d + 1][i] = m[0][1] * du + m[1][1] * dv;
+        }
+    }
 }
 
 namespace {
 
-texture::Wrap to_texture_wrap(TextureWrap wrap) {
-    return wrap == TextureWrap::clamp_to_edge ? texture::Wrap::clamp_to_edge : texture::Wrap::repeat;
-}
 
 // Samples a run's maps into the scratch channels, skipping a map already
 // sampled (glTF's metallic and roughness share one texture) and a level of
@@ -85,19 +111,22 @@ public:
     void sample(const TextureSlot& slot, int last_channel) {
         // The sampler does R, RGB or RGBA.
         const int channels = last_channel == 0 ? 1 : last_channel <= 2 ? 3 : 4;
-        if (slot.texture == sampled_ && slot.wrap == sampled_wrap_ && channels <= sampled_channels_) return;
+        const texture::Sampler sampler = sampler_of(slot);
+        const UvKey uv_key{slot.uv_set, slot.uv_transformed, slot.uv_transform};
+        if (slot.texture == sampled_ && sampler == sampled_sampler_ && uv_key == sampled_uvs_ &&
+            channels <= sampled_channels_)
+            return;
+        const float* const* uvs = uvs_of(uv_key);
         const texture::Texture& texture = *textures_[std::size_t(slot.texture)];
-        if (texture.width() != lod_width_ || texture.height() != lod_height_) {
-            using C = FragmentBuffer;
-            const texture::DerivativeInputs derivatives{count_, at(C::dudx), at(C::dvdx), at(C::dudy), at(C::dvdy)};
+        if (texture.width() != lod_width_ || texture.height() != lod_height_ || !(uv_key == lod_uvs_)) {
+            const texture::DerivativeInputs derivatives{count_, uvs[2], uvs[3], uvs[4], uvs[5]};
             texture::lod_from_derivatives(isa_, derivatives, texture.width(), texture.height(), scratch_.lod.data());
-            lod_width_ = texture.width(), lod_height_ = texture.height();
+            lod_width_ = texture.width(), lod_height_ = texture.height(), lod_uvs_ = uv_key;
         }
-        texture::sample_trilinear(isa_, texture, to_texture_wrap(slot.wrap),
-                                  {count_, at(FragmentBuffer::u), at(FragmentBuffer::v), scratch_.lod.data()},
-                                  {scratch_.r.data(), channels > 1 ? scratch_.g.data() : nullptr,
-                                   channels > 1 ? scratch_.b.data() : nullptr, channels > 3 ? scratch_.a.data() : nullptr});
-        sampled_ = slot.texture, sampled_wrap_ = slot.wrap, sampled_channels_ = channels;
+        texture::sample(isa_, texture, sampler, {count_, uvs[0], uvs[1], scratch_.lod.data()},
+                        {scratch_.r.data(), channels > 1 ? scratch_.g.data() : nullptr,
+                         channels > 1 ? scratch_.b.data() : nullptr, channels > 3 ? scratch_.a.data() : nullptr});
+        sampled_ = slot.texture, sampled_sampler_ = sampler, sampled_uvs_ = uv_key, sampled_channels_ = channels;
     }
     // The scratch channels were changed in place: the next sample() must refetch.
     void forget() { sampled_ = -1; }
@@ -110,13 +139,45 @@ public:
     const float* at(FragmentBuffer::Channel c) const { return fragments_.channel(c) + begin_; }
 
 private:
+    // Which uvs a slot reads (TextureSlot::uv_set, uv_transformed, uv_transform).
+    struct UvKey {
+        int set = 0;
+        bool transformed = false;
+        glm::mat3 transform{1.0f};
+        bool operator==(const UvKey& o) const {
+            return set == o.set && transformed == o.transformed && (!transformed || transform == o.transform);
+        }
+    };
+    // u, v, du/dx, dv/dx, du/dy, dv/dy of a key: the gathered channels, or
+    // (transformed) the scratch's, worked out when the key changes.
+    const float* const* uvs_of(const UvKey& key) {
+        using C = FragmentBuffer;
+        const C::Channel first = key.set == 1 ? C::u1 : C::u;
+        const C::Channel derivative = key.set == 1 ? C::du1dx : C::dudx;
+        for (int k = 0; k < 2; ++k) gathered_[k] = at(C::Channel(first + k));
+        for (int k = 0; k < 4; ++k) gathered_[2 + k] = at(C::Channel(derivative + k));
+        if (!key.transformed) return gathered_;
+        if (!(key == transformed_uvs_)) {
+            float* const out[6] = {scratch_.uv[0].data(), scratch_.uv[1].data(), scratch_.uv[2].data(),
+                                   scratch_.uv[3].data(), scratch_.uv[4].data(), scratch_.uv[5].data()};
+            transform_uvs(key.transform, padded_count(count_), gathered_, out);
+            transformed_uvs_ = key;
+        }
+        for (int k = 0; k < 6; ++k) transformed_[k] = scratch_.uv[std::size_t(k)].data();
+        return transformed_;
+    }
+
+    const float* gathered_[6] = {};
+    const float* transformed_[6] = {};
+    UvKey transformed_uvs_{-1};  // what scratch_.uv holds (set −1: nothing yet)
+    UvKey sampled_uvs_{-1}, lod_uvs_{};
     simd::Isa isa_;
     std::span<const std::shared_ptr<const texture::Texture>> textures_;
     const FragmentBuffer& fragments_;
     std::size_t begin_, count_;
     MaterialScratch& scratch_;
     std::int32_t sampled_ = -1;
-    TextureWrap sampled_wrap_ = TextureWrap::repeat;
+    texture::Sampler sampled_sampler_{};
     int sampled_channels_ = 0;
     int lod_width_ = 0, lod_height_ = 0;
 };
@@ -194,6 +255,23 @@ void apply_material_maps(simd::Isa isa, std::span<const std::shared_ptr<const te
                          std::span<const MaterialRun> runs, FragmentBuffer& fragments, MaterialScratch& scratch) {
     for (const MaterialRun& run : runs)
         if (run.textured && run.end > run.begin) apply_run(isa, textures, run, fragments, scratch);
+}
+
+void apply_unlit(std::span<const MaterialRun> runs, FragmentBuffer& f) {
+    using C = FragmentBuffer;
+    for (const MaterialRun& run : runs) {
+        const Material& m = *run.material;
+        if (!m.unlit) continue;
+        // A plain run's albedo channels may be unfilled (the fast gather): its albedo is the material's.
+        const glm::vec3 plain = radiance_for_display(m.albedo);
+        for (std::size_t i = run.begin; i < run.end; ++i) {
+            const glm::vec3 radiance =
+                run.plain ? plain
+                          : radiance_for_display({f.channel(C::albedo_r)[i], f.channel(C::albedo_g)[i],
+                                                  f.channel(C::albedo_b)[i]});
+            for (int c = 0; c < 3; ++c) f.channel(C::Channel(C::out_r + c))[i] = radiance[c];
+        }
+    }
 }
 
 void add_emission(std::span<const MaterialRun> runs, FragmentBuffer& f) {

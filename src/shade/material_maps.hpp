@@ -6,6 +6,7 @@
 // functions below are the reference they are tested against.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -16,6 +17,7 @@
 #include "shade/surface_gather.hpp"
 #include "simd/isa.hpp"
 #include "tessera/scene.hpp"
+#include "texture/texture.hpp"
 
 namespace tessera::shade {
 
@@ -34,8 +36,12 @@ glm::vec3 normal_from_map_tangent(const glm::vec3& tangent_normal, const glm::ve
 // A worker's scratch for the material pass, reserved once.
 struct MaterialScratch {
     std::vector<float> lod, r, g, b, a;
+    std::array<std::vector<float>, 6> uv;  // a transformed map's u, v and their derivatives (as the gathered ones)
     void reserve(std::size_t max_fragments);
 };
+
+// The GL sampler of a material's map.
+texture::Sampler sampler_of(const TextureSlot& slot);
 
 // For every textured run: samples the material's maps at the gathered
 // texture coordinates (trilinear, level of detail from the derivatives) and
@@ -44,6 +50,10 @@ struct MaterialScratch {
 // as gathered.
 void apply_material_maps(simd::Isa isa, std::span<const std::shared_ptr<const texture::Texture>> textures,
                          std::span<const MaterialRun> runs, FragmentBuffer& fragments, MaterialScratch& scratch);
+
+// After shading and emission: an unlit run's radiance becomes
+// radiance_for_display(albedo) (Material::unlit), replacing what was shaded.
+void apply_unlit(std::span<const MaterialRun> runs, FragmentBuffer& fragments);
 
 // After shading: adds each emitting run's emission (factor × map, or the
 // factor alone) to its shaded radiance.

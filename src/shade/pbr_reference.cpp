@@ -104,6 +104,17 @@ glm::vec3 shade_pbr_within_range(const glm::vec3& world_pos, const glm::vec3& no
 
 glm::vec3 tonemap_reinhard(const glm::vec3& hdr) { return hdr / (hdr + glm::vec3(1.0f)); }
 
+glm::vec3 radiance_for_display(const glm::vec3& color) {
+    glm::vec3 radiance;
+    for (int c = 0; c < 3; ++c) {
+        const float x = color[c] > 0.0f ? (color[c] < 1.0f ? color[c] : 1.0f) : 0.0f;  // NaN → 0
+        const float encoded = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+        const float tonemapped = std::pow(encoded, 2.2f);
+        radiance[c] = tonemapped >= 1.0f ? 1e6f : tonemapped / (1.0f - tonemapped);
+    }
+    return radiance;
+}
+
 glm::vec3 gamma_encode(const glm::vec3& linear) {
     const float inv_gamma = 1.0f / 2.2f;
     return {std::pow(linear.r, inv_gamma), std::pow(linear.g, inv_gamma), std::pow(linear.b, inv_gamma)};

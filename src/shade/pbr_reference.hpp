@@ -66,4 +66,11 @@ glm::vec3 tonemap_reinhard(const glm::vec3& hdr);
 glm::vec3 gamma_encode(const glm::vec3& linear);
 inline glm::vec3 display_from_radiance(const glm::vec3& hdr) { return gamma_encode(tonemap_reinhard(hdr)); }
 
+// An unlit material's radiance (KHR_materials_unlit): the radiance that
+// display_from_radiance turns into the sRGB encoding of `color` (linear, each
+// clamped to [0, 1]), so the base colour is the displayed colour, as glTF
+// viewers show unlit materials (no tone curve on them). Inverts both steps:
+// L = sRGB_encode(c)^2.2, radiance = L/(1 − L); c = 1 gives 1e6 (displays as 255).
+glm::vec3 radiance_for_display(const glm::vec3& color);
+
 }  // namespace tessera::shade

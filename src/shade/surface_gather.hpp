@@ -29,6 +29,13 @@ struct TriangleCorners {
     // Linear RGBA vertex colours (Mesh::colors) where the mesh has them; they
     // multiply the albedo (and alpha), interpolated perspective-correctly.
     const glm::vec4* color[3] = {nullptr, nullptr, nullptr};
+    // The second uv set's corners (Mesh::uvs1) where the mesh has one and the material's maps read it.
+    const glm::vec2* uv1[3] = {nullptr, nullptr, nullptr};
+    // The triangle shows its back (raster::RasterTriangle::back_facing; only a
+    // double-sided material's can, single-sided ones are culled): glTF's rule,
+    // for TOML materials too, flips the normal and the tangent frame there, so
+    // that the side seen is lit from its own side.
+    bool back_facing = false;
 };
 
 // The fast gather's per-tile table of the triangles it has met: each set up
@@ -118,6 +125,8 @@ public:
         dpdy_x, dpdy_y, dpdy_z,        // dFdy(WorldPos)
         tangent_x, tangent_y, tangent_z, tangent_w,  // stored world-space tangent; w = 0: none, derive from derivatives
         emissive_r, emissive_g, emissive_b,
+        // Meshes with a second uv set (Mesh::uvs1) only: its TexCoords and derivatives, as u..dvdy.
+        u1, v1, du1dx, dv1dx, du1dy, dv1dy,
         // Blended materials only (AlphaMode::blend): alpha_factor × vertex colour alpha,
         // × the albedo map's alpha after the material pass.
         alpha,
@@ -223,17 +232,30 @@ inline void add_extras(const TriangleCorners& c, const SurfaceInterpolants& t, i
     // dFdx = right − left pixel; dFdy = upper − lower row (rows run down the image).
     const glm::vec2 duv_dx = step_x * ((bx1 - b1) * t.uv_d1 + (bx2 - b2) * t.uv_d2);
     const glm::vec2 duv_dy = -step_y * ((by1 - b1) * t.uv_d1 + (by2 - b2) * t.uv_d2);
-    const glm::vec3 dp_dx = step_x * ((bx1 - b1) * t.world_d1 + (bx2 - b2) * t.world_d2);
-    const glm::vec3 dp_dy = -step_y * ((by1 - b1) * t.world_d1 + (by2 - b2) * t.world_d2);
+    // A back face's tangent frame is negated whole, T, B and N (the glTF sample
+    // viewer's rule): the normal arrives negated; negating dFdx(WorldPos) and
+    // dFdy(WorldPos) too makes the derived frames' T and B (material_maps.hpp)
+    // come out negated, and the stored tangent's xyz and w below do the same.
+    const float facing = c.back_facing ? -1.0f : 1.0f;
+    const glm::vec3 dp_dx = (facing * step_x) * ((bx1 - b1) * t.world_d1 + (bx2 - b2) * t.world_d2);
+    const glm::vec3 dp_dy = (facing * -step_y) * ((by1 - b1) * t.world_d1 + (by2 - b2) * t.world_d2);
     const float values[] = {uv.x,    uv.y,    duv_dx.x, duv_dx.y, duv_dy.x, duv_dy.y,
                             dp_dx.x, dp_dx.y, dp_dx.z,  dp_dy.x,  dp_dy.y,  dp_dy.z};
     for (int k = 0; k < 12; ++k) out.channel(C::Channel(C::u + k))[i] = values[k];
+    if (c.uv1[0] != nullptr) {  // the second set, interpolated and differentiated alike
+        const glm::vec2 s0 = *c.uv1[0], s_d1 = *c.uv1[1] - s0, s_d2 = *c.uv1[2] - s0;
+        const glm::vec2 uv1 = s0 + b1 * s_d1 + b2 * s_d2;
+        const glm::vec2 duv1_dx = step_x * ((bx1 - b1) * s_d1 + (bx2 - b2) * s_d2);
+        const glm::vec2 duv1_dy = -step_y * ((by1 - b1) * s_d1 + (by2 - b2) * s_d2);
+        const float second[] = {uv1.x, uv1.y, duv1_dx.x, duv1_dx.y, duv1_dy.x, duv1_dy.y};
+        for (int k = 0; k < 6; ++k) out.channel(C::Channel(C::u1 + k))[i] = second[k];
+    }
     glm::vec4 tangent(0.0f);  // w = 0: derive the tangent frame
     if (c.tangent[0] && c.tangent[1] && c.tangent[2]) {
         const float b0 = 1.0f - b1 - b2;
         tangent = glm::vec4(
-            glm::vec3(*c.tangent[0]) * b0 + glm::vec3(*c.tangent[1]) * b1 + glm::vec3(*c.tangent[2]) * b2,
-            c.tangent[0]->w < 0.0f ? -1.0f : 1.0f);
+            facing * (glm::vec3(*c.tangent[0]) * b0 + glm::vec3(*c.tangent[1]) * b1 + glm::vec3(*c.tangent[2]) * b2),
+            facing * (c.tangent[0]->w < 0.0f ? -1.0f : 1.0f));
     }
     for (int k = 0; k < 4; ++k) out.channel(C::Channel(C::tangent_x + k))[i] = tangent[k];
 }
@@ -262,6 +284,7 @@ public:
             world_d1_ = c_.corner[1]->world_pos - world0_, world_d2_ = c_.corner[2]->world_pos - world0_;
             normal0_ = c_.corner[0]->normal;
             normal_d1_ = c_.corner[1]->normal - normal0_, normal_d2_ = c_.corner[2]->normal - normal0_;
+            if (c_.back_facing) normal0_ = -normal0_, normal_d1_ = -normal_d1_, normal_d2_ = -normal_d2_;
             uv0_ = c_.corner[0]->uv;
             uv_d1_ = c_.corner[1]->uv - uv0_, uv_d2_ = c_.corner[2]->uv - uv0_;
         }

@@ -536,6 +536,8 @@ private:
                                                          &lookup_.vertex(chunk, triangle.vertex[1]),
                                                          &lookup_.vertex(chunk, triangle.vertex[2])};
         set_up_geometry(t, corner);
+        if (triangle.back_facing) [[unlikely]]  // as SurfaceGather::add: the normal negated (exactly)
+            t.normal0 = -t.normal0, t.normal_d1 = -t.normal_d1, t.normal_d2 = -t.normal_d2;
         t.beyond_plain = chunk.beyond_plain;
         t.textured = false;
         t.run_key = reinterpret_cast<std::uintptr_t>(chunk.material) | std::uintptr_t(chunk.beyond_plain);

@@ -38,6 +38,8 @@ enum class PngAlpha { straight, associated };
 
 bool has_png_signature(std::span<const std::uint8_t> bytes);
 bool has_jpeg_signature(std::span<const std::uint8_t> bytes);
+bool has_webp_signature(std::span<const std::uint8_t> bytes);  // RIFF....WEBP
+bool has_avif_signature(std::span<const std::uint8_t> bytes);  // ....ftypavif (or avis)
 
 // Grey → (g, g, g, 255), grey + alpha → (g, g, g, a), palette and tRNS
 // expanded, 1/2/4-bit grey scaled to 8 bits (libpng), 16-bit samples rounded
@@ -47,6 +49,12 @@ void decode_png(std::span<const std::uint8_t> bytes, PngAlpha alpha, const Level
 // Greyscale → (g, g, g, 255); YCbCr and RGB → (r, g, b, 255); CMYK and YCCK
 // → RGB as OpenImageIO converts them (R = C·K with Adobe's inverted values).
 void decode_jpeg(std::span<const std::uint8_t> bytes, const Level0Allocator& allocate);
+
+// WebP (lossy or lossless, with or without alpha; not animated) by libwebp,
+// and AVIF (its first image, any bit depth, converted to 8-bit RGBA by libavif
+// with its default YUV coefficients) by libavif (webp_avif_decoders.cpp).
+void decode_webp(std::span<const std::uint8_t> bytes, const Level0Allocator& allocate);
+void decode_avif(std::span<const std::uint8_t> bytes, const Level0Allocator& allocate);
 
 // A 16-bit sample → 8 bits as OpenImageIO converts it: through float,
 // round-half-up: uint8(v/65535·255 + ½).

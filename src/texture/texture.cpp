@@ -86,20 +86,47 @@ struct AxisTaps {
     float alpha;
 };
 
+// GL_MIRRORED_REPEAT has period 2: coord is reduced to [0, 2) (coord −
+// 2⌊coord/2⌋), indices run over a 2·size pattern (one step of wrapping), and
+// index m of it is texel m below size, else 2·size − 1 − m: GL's
+// (size − 1) − mirror((i mod 2·size) − size), mirror(a) = a ≥ 0 ? a : −(1 + a).
+int mirror_fold(int i, int size) {
+    const int period = 2 * size;
+    if (i < 0) i += period;
+    if (i >= period) i -= period;
+    return i < size ? i : period - 1 - i;
+}
+
 AxisTaps axis_taps(float coord, int size, float size_f, Wrap wrap) {
     if (wrap == Wrap::repeat) coord -= std::floor(coord);
-    const float x = clamp_nan_low(coord * size_f - 0.5f, -1.0f, size_f);
+    if (wrap == Wrap::mirrored_repeat) coord -= 2.0f * std::floor(coord * 0.5f);
+    const float period_f = wrap == Wrap::mirrored_repeat ? 2.0f * size_f : size_f;
+    const float x = clamp_nan_low(coord * size_f - 0.5f, -1.0f, period_f);
     const float x_floor = std::floor(x);
     AxisTaps taps{static_cast<int>(x_floor), static_cast<int>(x_floor) + 1, x - x_floor};
     if (wrap == Wrap::repeat) {
         // With coord in [0, 1], x is in [−1, size − ½]: one step of wrapping suffices.
         if (taps.i0 < 0) taps.i0 += size;
         if (taps.i1 >= size) taps.i1 -= size;
+    } else if (wrap == Wrap::mirrored_repeat) {
+        taps.i0 = mirror_fold(taps.i0, size);
+        taps.i1 = mirror_fold(taps.i1, size);
     } else {
         taps.i0 = std::clamp(taps.i0, 0, size - 1);
         taps.i1 = std::clamp(taps.i1, 0, size - 1);
     }
     return taps;
+}
+
+// GL_NEAREST along one axis: i = wrap(⌊coord·size⌋), coords reduced as for axis_taps.
+int nearest_tap(float coord, int size, float size_f, Wrap wrap) {
+    if (wrap == Wrap::repeat) coord -= std::floor(coord);
+    if (wrap == Wrap::mirrored_repeat) coord -= 2.0f * std::floor(coord * 0.5f);
+    const float period_f = wrap == Wrap::mirrored_repeat ? 2.0f * size_f : size_f;
+    const int i = static_cast<int>(std::floor(clamp_nan_low(coord * size_f, -1.0f, period_f)));
+    if (wrap == Wrap::repeat) return i >= size ? i - size : i < 0 ? i + size : i;  // size: rounded up; −1: NaN
+    if (wrap == Wrap::mirrored_repeat) return mirror_fold(i, size);
+    return std::clamp(i, 0, size - 1);
 }
 
 // Weights of the area-weighted box filter from `from` texels down to `to`
@@ -351,6 +378,8 @@ Texture ImageDecoder::decode_bytes(std::span<const std::uint8_t> bytes, const st
     const auto start = std::chrono::steady_clock::now();
     try {
         if (has_png_signature(bytes)) decode_png(bytes, png_alpha, allocate);
+        else if (has_webp_signature(bytes)) decode_webp(bytes, allocate);
+        else if (has_avif_signature(bytes)) decode_avif(bytes, allocate);
         else decode_jpeg(bytes, allocate);
     } catch (const ImageDecodeError& e) {
         fail(source, (e.header() ? std::string(header_prefix) + ": " : "truncated or corrupt image data: ") +
@@ -476,8 +505,8 @@ Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space)
     // The format is told by the bytes; a .png or .jpg file that is neither is
     // refused here, anything else goes to OpenImageIO.
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<std::uint8_t> signature = read_bytes(path, source, max_bytes, 8);
-    if (!has_png_signature(signature) && !has_jpeg_signature(signature)) {
+    const std::vector<std::uint8_t> signature = read_bytes(path, source, max_bytes, 12);
+    if (!can_decode(signature)) {
         if (has_extension(path, {".png", ".jpg", ".jpeg"}))
             fail(source, "cannot read image: neither a PNG nor a JPEG file (bad signature)");
         return ImageDecoder::decode_with_module(path, source, color_space);
@@ -488,13 +517,17 @@ Texture Texture::load(const std::filesystem::path& path, ColorSpace color_space)
     return ImageDecoder::decode_bytes(bytes, source, color_space, PngAlpha::straight, "cannot read image");
 }
 
+bool Texture::can_decode(std::span<const std::uint8_t> encoded) {
+    return has_jpeg_signature(encoded) || (encoded.size() >= 4 && std::memcmp(encoded.data(), "\x89PNG", 4) == 0) ||
+           has_webp_signature(encoded) || has_avif_signature(encoded);
+}
+
 Texture Texture::decode(std::span<const std::uint8_t> encoded, const std::string& source, ColorSpace color_space) {
-    if (!has_jpeg_signature(encoded) && !(encoded.size() >= 4 && std::memcmp(encoded.data(), "\x89PNG", 4) == 0))
-        fail(source, "is neither PNG nor JPEG");
-    // PNG alpha associated as OpenImageIO did by default (colour premultiplied
-    // by alpha in the encoded values), as glTF images were read before 8-bit
-    // storage; glTF means straight alpha, which is the alpha modes' business.
-    return ImageDecoder::decode_bytes(encoded, source, color_space, PngAlpha::associated, "cannot decode image");
+    if (!can_decode(encoded)) fail(source, "is neither PNG, JPEG, WebP nor AVIF");
+    // Straight alpha as stored: glTF's base colour is not premultiplied, and
+    // OPAQUE ignores alpha altogether (it used to be associated here, as
+    // OpenImageIO does by default, which darkened colour where alpha was low).
+    return ImageDecoder::decode_bytes(encoded, source, color_space, PngAlpha::straight, "cannot decode image");
 }
 
 // Level n+1 from level n: decode the parent's texels to linear light, box
@@ -599,9 +632,19 @@ std::array<std::uint8_t, 4> Texture::texel_bytes(int level_index, int x, int y) 
 }
 
 glm::vec4 Texture::sample_bilinear(int level_index, float u, float v, Wrap wrap) const {
+    return sample_bilinear(level_index, u, v, wrap, wrap);
+}
+
+glm::vec4 Texture::sample_nearest(int level_index, float u, float v, Wrap wrap_s, Wrap wrap_t) const {
     const MipLevel& l = level(level_index);
-    const AxisTaps x = axis_taps(u, l.width, static_cast<float>(l.width), wrap);
-    const AxisTaps y = axis_taps(v, l.height, static_cast<float>(l.height), wrap);
+    return texel(level_index, nearest_tap(u, l.width, static_cast<float>(l.width), wrap_s),
+                 nearest_tap(v, l.height, static_cast<float>(l.height), wrap_t));
+}
+
+glm::vec4 Texture::sample_bilinear(int level_index, float u, float v, Wrap wrap_s, Wrap wrap_t) const {
+    const MipLevel& l = level(level_index);
+    const AxisTaps x = axis_taps(u, l.width, static_cast<float>(l.width), wrap_s);
+    const AxisTaps y = axis_taps(v, l.height, static_cast<float>(l.height), wrap_t);
     // (1−α)(1−β)·τ00 + α(1−β)·τ10 + (1−α)β·τ01 + αβ·τ11, as two lerps along x then one along y.
     const glm::vec4 top = (1.0f - x.alpha) * texel(level_index, x.i0, y.i0) + x.alpha * texel(level_index, x.i1, y.i0);
     const glm::vec4 bottom =
@@ -619,6 +662,35 @@ glm::vec4 Texture::sample_trilinear(glm::vec2 uv, float lod, Wrap wrap) const {
     const glm::vec4 s0 = sample_bilinear(level0, uv.x, uv.y, wrap);
     if (blend == 0.0f) return s0;
     const glm::vec4 s1 = sample_bilinear(level1, uv.x, uv.y, wrap);
+    return (1.0f - blend) * s0 + blend * s1;
+}
+
+glm::vec4 Texture::sample(glm::vec2 uv, float lod, const Sampler& sampler) const {
+    const auto on_level = [&](int level_index, bool linear) {
+        return linear ? sample_bilinear(level_index, uv.x, uv.y, sampler.wrap_s, sampler.wrap_t)
+                      : sample_nearest(level_index, uv.x, uv.y, sampler.wrap_s, sampler.wrap_t);
+    };
+    const Filter min = sampler.min;
+    const bool nearest_mips = min == Filter::nearest_mipmap_nearest || min == Filter::nearest_mipmap_linear;
+    const float c = sampler.mag == Filter::linear && nearest_mips ? 0.5f : 0.0f;
+    if (!(lod > c)) return on_level(0, sampler.mag == Filter::linear);  // magnification (NaN too)
+    const bool linear = min == Filter::linear || min == Filter::linear_mipmap_nearest ||
+                        min == Filter::linear_mipmap_linear;
+    if (min == Filter::nearest || min == Filter::linear) return on_level(0, linear);
+    const float max_level = static_cast<float>(level_count() - 1);
+    if (min == Filter::nearest_mipmap_nearest || min == Filter::linear_mipmap_nearest) {
+        const float d = lod <= 0.5f ? 0.0f : std::min(std::ceil(lod + 0.5f) - 1.0f, max_level);
+        return on_level(static_cast<int>(d), linear);
+    }
+    // *_MIPMAP_LINEAR, as sample_trilinear (lod > 0 here).
+    const float clamped = std::min(lod, max_level);
+    const float level_floor = std::floor(clamped);
+    const float blend = clamped - level_floor;
+    const int level0 = static_cast<int>(level_floor);
+    const int level1 = std::min(level0 + 1, level_count() - 1);
+    const glm::vec4 s0 = on_level(level0, linear);
+    if (blend == 0.0f) return s0;
+    const glm::vec4 s1 = on_level(level1, linear);
     return (1.0f - blend) * s0 + blend * s1;
 }
 
@@ -640,7 +712,9 @@ float lod_from_derivatives(float dudx, float dvdx, float dudy, float dvdy, int w
 #define TESSERA_DECLARE_TEXTURE_ENTRIES(suffix)                                                        \
     void sample_trilinear_##suffix(const TextureView& texture, Wrap wrap, const TexCoordInputs& in, \
                                    const TexelOutputs& out);                                       \
-    void lod_from_derivatives_##suffix(const DerivativeInputs& in, int width, int height, float* lod);
+    void lod_from_derivatives_##suffix(const DerivativeInputs& in, int width, int height, float* lod);        \
+    void sample_general_##suffix(const TextureView& texture, const Sampler& sampler, const TexCoordInputs& in, \
+                                 const TexelOutputs& out);
 TESSERA_DECLARE_TEXTURE_ENTRIES(sse4)
 TESSERA_DECLARE_TEXTURE_ENTRIES(avx2)
 TESSERA_DECLARE_TEXTURE_ENTRIES(avx512)
@@ -661,6 +735,25 @@ void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const Te
         case Isa::sse4: return sample_trilinear_sse4(texture.view(), wrap, in, out);
         case Isa::avx2: return sample_trilinear_avx2(texture.view(), wrap, in, out);
         case Isa::avx512: return sample_trilinear_avx512(texture.view(), wrap, in, out);
+    }
+}
+
+void sample(simd::Isa isa, const Texture& texture, const Sampler& sampler, const TexCoordInputs& in,
+            const TexelOutputs& out) {
+    simd::require_supported(isa);
+    if (sampler.trilinear()) return sample_trilinear(isa, texture, sampler.wrap_s, in, out);
+    switch (isa) {
+        case Isa::scalar:
+            for (std::size_t i = 0; i < in.count; ++i) {
+                const glm::vec4 s = texture.sample({in.u[i], in.v[i]}, in.lod[i], sampler);
+                out.r[i] = s.r;
+                if (out.g) out.g[i] = s.g, out.b[i] = s.b;
+                if (out.a) out.a[i] = s.a;
+            }
+            return;
+        case Isa::sse4: return sample_general_sse4(texture.view(), sampler, in, out);
+        case Isa::avx2: return sample_general_avx2(texture.view(), sampler, in, out);
+        case Isa::avx512: return sample_general_avx512(texture.view(), sampler, in, out);
     }
 }
 

@@ -46,9 +46,32 @@ using simd::padded_count;
 // clamped and rounded.
 enum class ColorSpace { srgb, linear };
 
-// What happens outside [0, 1]: GL_REPEAT (the pattern tiles) or
-// GL_CLAMP_TO_EDGE (the edge texels extend).
-enum class Wrap { repeat, clamp_to_edge };
+// What happens outside [0, 1]: GL_REPEAT (the pattern tiles),
+// GL_CLAMP_TO_EDGE (the edge texels extend) or GL_MIRRORED_REPEAT (the
+// pattern tiles, every other copy mirrored).
+enum class Wrap { repeat, clamp_to_edge, mirrored_repeat };
+
+// GL's texture filters (§8.14): NEAREST and LINEAR for magnification;
+// all six for minification.
+enum class Filter { nearest, linear, nearest_mipmap_nearest, linear_mipmap_nearest, nearest_mipmap_linear,
+                    linear_mipmap_linear };
+
+// A GL sampler object's state: wrap per axis (s = u, t = v) and the two
+// filters. The default is what the sampler did before samplers were
+// configurable, and glTF's default where a file gives none.
+struct Sampler {
+    Wrap wrap_s = Wrap::repeat;
+    Wrap wrap_t = Wrap::repeat;
+    Filter mag = Filter::linear;
+    Filter min = Filter::linear_mipmap_linear;
+    bool operator==(const Sampler&) const = default;
+    // GL_LINEAR / GL_LINEAR_MIPMAP_LINEAR with one wrap (repeat or clamp) on both
+    // axes: what sample_trilinear() does, on its fast kernels.
+    bool trilinear() const {
+        return mag == Filter::linear && min == Filter::linear_mipmap_linear && wrap_s == wrap_t &&
+               wrap_s != Wrap::mirrored_repeat;
+    }
+};
 
 // Loading or building a texture failed; the message names the file (or
 // "from_pixels") and what was wrong.
@@ -113,15 +136,17 @@ struct TextureView {
 // 3 = RGB → (r, g, b, 1); 4 = RGBA; more than 4: the first 4, the rest ignored.
 class Texture {
 public:
-    // Reads PNG and JPEG itself (libpng, libjpeg-turbo), any other format
+    // Reads PNG, JPEG, WebP and AVIF itself (libpng, libjpeg-turbo, libwebp, libavif), any other format
     // OpenImageIO reads (TGA, TIFF, EXR, HDR, ...) through its module
     // (oiio_module_loader.hpp), the first subimage. Throws TextureError for a
     // missing or unreadable file, a truncated image, a zero size, a side above
     // kMaxTextureSize, or another format when the module is not installed.
     static Texture load(const std::filesystem::path& path, ColorSpace color_space);
-    // The same from an encoded PNG or JPEG image in memory (a glTF image);
-    // messages read "<source>: what is wrong".
+    // The same from an encoded PNG, JPEG, WebP or AVIF image in memory (a glTF
+    // image); messages read "<source>: what is wrong".
     static Texture decode(std::span<const std::uint8_t> encoded, const std::string& source, ColorSpace color_space);
+    // Whether decode() knows the bytes' format (by its signature).
+    static bool can_decode(std::span<const std::uint8_t> encoded);
     // `pixels` holds width·height·channels floats, row-major, top row first,
     // channels interleaved, in color_space's encoding (sRGB values are the
     // encoded ones), rounded to 8 bits: round(255·clamp(value, 0, 1)).
@@ -155,6 +180,19 @@ public:
     // (magnification). lod is clamped to [0, level_count − 1] (NaN → 0); the
     // result blends levels floor(lod) and floor(lod) + 1 by frac(lod).
     glm::vec4 sample_trilinear(glm::vec2 uv, float lod, Wrap wrap) const;
+
+    // GL_NEAREST on one level: the texel whose square holds (u, v), wrapped per axis.
+    glm::vec4 sample_nearest(int level, float u, float v, Wrap wrap_s, Wrap wrap_t) const;
+    // GL_LINEAR on one level, wrapped per axis.
+    glm::vec4 sample_bilinear(int level, float u, float v, Wrap wrap_s, Wrap wrap_t) const;
+
+    // The GL sampler (§8.14, §8.14.2): magnification where lod <= c (c = 0.5
+    // for mag LINEAR with min NEAREST_MIPMAP_*, else 0; NaN magnifies), with
+    // sampler.mag on level 0; otherwise sampler.min: NEAREST/LINEAR on level 0;
+    // *_MIPMAP_NEAREST on level ⌈lod + ½⌉ − 1 (0 up to lod ½), clamped to the
+    // last; *_MIPMAP_LINEAR blends levels ⌊lod⌋ and ⌊lod⌋ + 1 (lod clamped to the
+    // last level) by frac(lod). With the default sampler it equals sample_trilinear.
+    glm::vec4 sample(glm::vec2 uv, float lod, const Sampler& sampler) const;
 
     // The kernels' view of this texture; valid while the texture lives and is not moved.
     TextureView view() const;
@@ -249,5 +287,12 @@ struct TexelOutputs {
 // checks |simd − scalar| <= 1e-5; it measures 0).
 void sample_trilinear(simd::Isa isa, const Texture& texture, Wrap wrap, const TexCoordInputs& in,
                       const TexelOutputs& out);
+
+// out[i] = texture.sample({u[i], v[i]}, lod[i], sampler) for i < in.count, the
+// same floats from every ISA (the same arithmetic in the same order). A
+// trilinear() sampler runs sample_trilinear's kernels; any other the general
+// kernel, whose filter and wrap choices are made once per call.
+void sample(simd::Isa isa, const Texture& texture, const Sampler& sampler, const TexCoordInputs& in,
+            const TexelOutputs& out);
 
 }  // namespace tessera::texture

@@ -131,6 +131,111 @@ void sample_trilinear_batch(const TextureView& texture, Wrap wrap, const TexCoor
     for (int k = 0; k < N; ++k) result.c[k].store_unaligned(channels[k] + i);
 }
 
+// ---- The general sampler (Texture::sample): wrap per axis, GL_MIRRORED_REPEAT,
+// every filter. The same steps as texture.cpp's axis_taps, nearest_tap and
+// Texture::sample; the choices are uniform over a call, so they branch once
+// per vector, not per lane.
+
+// mirror_fold of texture.cpp: i in [−1, 2·size] onto the mirrored pattern's texel.
+IntBatch mirror_fold(IntBatch i, const IntBatch& size) {
+    const IntBatch period = size + size;
+    i = xsimd::select(i < IntBatch(0), i + period, i);
+    i = xsimd::select(i >= period, i - period, i);
+    return xsimd::select(i < size, i, period - IntBatch(1) - i);
+}
+
+Batch reduce_coord(Batch coord, Wrap wrap) {
+    if (wrap == Wrap::repeat) return coord - xsimd::floor(coord);
+    if (wrap == Wrap::mirrored_repeat) return coord - Batch(2.0f) * xsimd::floor(coord * Batch(0.5f));
+    return coord;
+}
+
+AxisTaps general_axis_taps(Batch coord, const IntBatch& size, const Batch& size_f, Wrap wrap) {
+    if (wrap != Wrap::mirrored_repeat) return axis_taps(coord, size, size_f, wrap);
+    coord = reduce_coord(coord, wrap);
+    const Batch x = clamp_nan_low(coord * size_f - Batch(0.5f), Batch(-1.0f), Batch(2.0f) * size_f);
+    const Batch x_floor = xsimd::floor(x);
+    const IntBatch i0 = xsimd::to_int(x_floor);
+    return {mirror_fold(i0, size), mirror_fold(i0 + IntBatch(1), size), x - x_floor};
+}
+
+IntBatch nearest_tap(Batch coord, const IntBatch& size, const Batch& size_f, Wrap wrap) {
+    coord = reduce_coord(coord, wrap);
+    const Batch period_f = wrap == Wrap::mirrored_repeat ? Batch(2.0f) * size_f : size_f;
+    const IntBatch i = xsimd::to_int(xsimd::floor(clamp_nan_low(coord * size_f, Batch(-1.0f), period_f)));
+    if (wrap == Wrap::repeat)
+        return xsimd::select(i >= size, i - size, xsimd::select(i < IntBatch(0), i + size, i));
+    if (wrap == Wrap::mirrored_repeat) return mirror_fold(i, size);
+    return xsimd::select(i < IntBatch(0), IntBatch(0), xsimd::select(i > size - IntBatch(1), size - IntBatch(1), i));
+}
+
+template <int N>
+Texels<N> sample_level(const TextureView& texture, const Sampler& sampler, const IntBatch& level, const Batch& u,
+                       const Batch& v, bool linear) {
+    const LevelLanes l = level_lanes(texture, level);
+    if (!linear) {
+        const IntBatch x = nearest_tap(u, l.width, l.width_f, sampler.wrap_s);
+        const IntBatch y = nearest_tap(v, l.height, l.height_f, sampler.wrap_t);
+        return fetch<N>(texture, l.offset + y * l.width + x);
+    }
+    const AxisTaps x = general_axis_taps(u, l.width, l.width_f, sampler.wrap_s);
+    const AxisTaps y = general_axis_taps(v, l.height, l.height_f, sampler.wrap_t);
+    const IntBatch row0 = l.offset + y.i0 * l.width;
+    const IntBatch row1 = l.offset + y.i1 * l.width;
+    const Texels<N> top = lerp(fetch<N>(texture, row0 + x.i0), fetch<N>(texture, row0 + x.i1), x.alpha);
+    const Texels<N> bottom = lerp(fetch<N>(texture, row1 + x.i0), fetch<N>(texture, row1 + x.i1), x.alpha);
+    return lerp(top, bottom, y.alpha);
+}
+
+// Lanes are magnified or minified each on their own (Texture::sample's
+// branches as selects): both results are computed where a vector holds both.
+template <int N>
+void sample_general_batch(const TextureView& texture, const Sampler& sampler, const TexCoordInputs& in, std::size_t i,
+                          const TexelOutputs& out) {
+    const Batch u = xsimd::load_unaligned(in.u + i);
+    const Batch v = xsimd::load_unaligned(in.v + i);
+    const Batch lod = xsimd::load_unaligned(in.lod + i);
+    const Filter min = sampler.min;
+    const bool nearest_mips = min == Filter::nearest_mipmap_nearest || min == Filter::nearest_mipmap_linear;
+    const float c = sampler.mag == Filter::linear && nearest_mips ? 0.5f : 0.0f;
+    const auto minified = lod > Batch(c);  // false for NaN
+    const IntBatch zero(0);
+    Texels<N> result{};
+    if (!xsimd::all(minified)) result = sample_level<N>(texture, sampler, zero, u, v, sampler.mag == Filter::linear);
+    if (xsimd::any(minified)) {
+        const bool linear = min == Filter::linear || min == Filter::linear_mipmap_nearest ||
+                            min == Filter::linear_mipmap_linear;
+        const float max_level_f = static_cast<float>(texture.level_count - 1);
+        Texels<N> minified_result;
+        if (min == Filter::nearest || min == Filter::linear) {
+            minified_result = sample_level<N>(texture, sampler, zero, u, v, linear);
+        } else if (min == Filter::nearest_mipmap_nearest || min == Filter::linear_mipmap_nearest) {
+            // Lanes not minified may hold any lod: NaN and the like end on level 0 through the clamp.
+            const Batch d = xsimd::select(lod <= Batch(0.5f), Batch(0.0f),
+                                          xsimd::min(xsimd::ceil(lod + Batch(0.5f)) - Batch(1.0f), Batch(max_level_f)));
+            const IntBatch level = xsimd::to_int(clamp_nan_low(d, Batch(0.0f), Batch(max_level_f)));
+            minified_result = sample_level<N>(texture, sampler, level, u, v, linear);
+        } else {
+            const Batch clamped = clamp_nan_low(lod, Batch(0.0f), Batch(max_level_f));
+            const Batch level_floor = xsimd::floor(clamped);
+            const Batch blend = clamped - level_floor;
+            const IntBatch level0 = xsimd::to_int(level_floor);
+            const IntBatch level1 = xsimd::min(level0 + IntBatch(1), IntBatch(texture.level_count - 1));
+            minified_result = sample_level<N>(texture, sampler, level0, u, v, linear);
+            // As the scalar sampler: level1 only where blend is not 0 (the lerp by 0 gives s0's bits anyway).
+            if (xsimd::any(blend != Batch(0.0f))) {
+                const Texels<N> s1 = sample_level<N>(texture, sampler, level1, u, v, linear);
+                const Texels<N> mixed = lerp(minified_result, s1, blend);
+                for (int k = 0; k < N; ++k)
+                    minified_result.c[k] = xsimd::select(blend != Batch(0.0f), mixed.c[k], minified_result.c[k]);
+            }
+        }
+        for (int k = 0; k < N; ++k) result.c[k] = xsimd::select(minified, minified_result.c[k], result.c[k]);
+    }
+    float* const channels[] = {out.r, out.g, out.b, out.a};
+    for (int k = 0; k < N; ++k) result.c[k].store_unaligned(channels[k] + i);
+}
+
 }  // namespace
 
 // Entry points, declared in texture.cpp.
@@ -143,6 +248,18 @@ void TESSERA_SIMD_ENTRY(lod_from_derivatives)(const DerivativeInputs& in, int wi
         // log2(max(ρx, ρy)) = ½·log2(max(ρx², ρy²)): one square root fewer.
         const Batch rho2 = xsimd::max(ux * ux + vx * vx, uy * uy + vy * vy);
         (Batch(0.5f) * xsimd::log2(rho2)).store_unaligned(lod + i);
+    }
+}
+
+void TESSERA_SIMD_ENTRY(sample_general)(const TextureView& texture, const Sampler& sampler, const TexCoordInputs& in,
+                                        const TexelOutputs& out) {
+    const std::size_t end = padded_count(in.count);
+    if (out.a != nullptr) {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_general_batch<4>(texture, sampler, in, i, out);
+    } else if (out.g != nullptr) {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_general_batch<3>(texture, sampler, in, i, out);
+    } else {
+        for (std::size_t i = 0; i < end; i += Batch::size) sample_general_batch<1>(texture, sampler, in, i, out);
     }
 }
 

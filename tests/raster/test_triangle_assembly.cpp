@@ -14,7 +14,8 @@ namespace {
 bool same(const raster::RasterTriangle& a, const raster::RasterTriangle& b) {
     return a.x == b.x && a.y == b.y && a.px_min == b.px_min && a.px_max == b.px_max && a.py_min == b.py_min &&
            a.py_max == b.py_max && std::memcmp(&a.inv_area, &b.inv_area, sizeof(float)) == 0 &&
-           std::memcmp(a.depth.data(), b.depth.data(), sizeof(a.depth)) == 0 && a.vertex == b.vertex;
+           std::memcmp(a.depth.data(), b.depth.data(), sizeof(a.depth)) == 0 && a.vertex == b.vertex &&
+           a.back_facing == b.back_facing;
 }
 
 // For each SIMD ISA this CPU runs: `assemble(isa, out)` must give `reference`'s
@@ -137,25 +138,33 @@ TEST_CASE("assembly through every ISA's kernel equals the scalar path: clipping,
 
     for (const int samples : {1, 4})
         for (const raster::Culling culling :
-             {raster::Culling::none, raster::Culling::drop_positive_area, raster::Culling::drop_negative_area}) {
+             {raster::Culling::none, raster::Culling::drop_positive_area, raster::Culling::drop_negative_area})
+        for (const bool mirrored : {false, true}) {
             CAPTURE(samples);
             CAPTURE(int(culling));
+            CAPTURE(mirrored);
             raster::AssembledTriangles reference;
             raster::assemble_triangles(simd::Isa::scalar, indices, kFirstVertex, vertex_count, frame, viewport, guard,
-                                       reference, samples, culling, colors);
+                                       reference, samples, culling, colors, mirrored);
             std::size_t clipped = 0;
             for (const raster::RasterTriangle& t : reference.triangles)
                 clipped += (t.vertex[0] | t.vertex[1] | t.vertex[2]) >= geometry::kClippedVertexBit;
             REQUIRE(reference.triangles.size() > 1000);
             REQUIRE(clipped > 50);  // clipped pieces sit between the kernel's triangles
+            // Culling GL's back faces (positive area, unmirrored) keeps only front faces, and the other way round.
+            std::size_t back = 0;
+            for (const raster::RasterTriangle& t : reference.triangles) back += t.back_facing;
+            if (culling == raster::Culling::drop_positive_area) CHECK(back == (mirrored ? reference.triangles.size() : 0));
+            if (culling == raster::Culling::drop_negative_area) CHECK(back == (mirrored ? 0 : reference.triangles.size()));
+            if (culling == raster::Culling::none) CHECK((back > 100 && back + 100 < reference.triangles.size()));
             check_every_simd_isa(
                 reference,
                 [&](simd::Isa isa, raster::AssembledTriangles& assembled) {
                     // Two runs, one of them cut into pieces that end off a batch boundary.
                     raster::assemble_triangles(isa, std::span(indices).first(3 * 1001), kFirstVertex, vertex_count,
-                                               frame, viewport, guard, assembled, samples, culling, colors);
+                                               frame, viewport, guard, assembled, samples, culling, colors, mirrored);
                     raster::assemble_triangles(isa, std::span(indices).subspan(3 * 1001), kFirstVertex, vertex_count,
-                                               frame, viewport, guard, assembled, samples, culling, colors);
+                                               frame, viewport, guard, assembled, samples, culling, colors, mirrored);
                 },
                 [&](const raster::AssembledTriangles& assembled) {
                     REQUIRE(assembled.clipped_vertices.size() == reference.clipped_vertices.size());

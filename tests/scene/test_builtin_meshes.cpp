@@ -79,7 +79,7 @@ TEST_CASE("sphere mesh is the reference's 64x64 UV sphere") {
         CHECK(mesh.positions[0] == glm::vec3(0.0f, 1.0f, 0.0f));  // north pole, exactly
     }
 
-    SUBCASE("triangles follow the reference's index pattern") {
+    SUBCASE("triangles follow the reference's index pattern, corners 1 and 2 swapped") {
         for (const int y : {0, 31, 63}) {
             for (const int x : {0, 5, 63}) {
                 const auto quad = static_cast<std::size_t>(y * 64 + x) * 6;
@@ -87,16 +87,16 @@ TEST_CASE("sphere mesh is the reference's 64x64 UV sphere") {
                 const auto i1 = static_cast<std::uint32_t>((y + 1) * 65 + x);
                 const auto i2 = i1 + 1, i3 = i0 + 1;
                 CHECK(mesh.indices[quad + 0] == i0);
-                CHECK(mesh.indices[quad + 1] == i1);
-                CHECK(mesh.indices[quad + 2] == i2);
+                CHECK(mesh.indices[quad + 1] == i2);
+                CHECK(mesh.indices[quad + 2] == i1);
                 CHECK(mesh.indices[quad + 3] == i0);
-                CHECK(mesh.indices[quad + 4] == i2);
-                CHECK(mesh.indices[quad + 5] == i3);
+                CHECK(mesh.indices[quad + 4] == i3);
+                CHECK(mesh.indices[quad + 5] == i2);
             }
         }
     }
 
-    SUBCASE("winding is consistent: the reference's order is clockwise from outside") {
+    SUBCASE("winding is consistent: counter-clockwise from outside (the reference's is clockwise)") {
         int inward = 0, outward = 0, degenerate = 0;
         for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
             const glm::vec3 a = mesh.positions[mesh.indices[t]];
@@ -111,9 +111,9 @@ TEST_CASE("sphere mesh is the reference's 64x64 UV sphere") {
                 ++outward;
             }
         }
-        CHECK(outward == 0);
+        CHECK(inward == 0);
         CHECK(degenerate <= 2 * 64);
-        CHECK(inward + degenerate == 64 * 64 * 2);
+        CHECK(outward + degenerate == 64 * 64 * 2);
     }
 }
 

@@ -100,8 +100,9 @@ void check_test_document(const GltfContent& content) {
     CHECK(painted.roughness_channel == 1);
     CHECK(painted.normal_scale == doctest::Approx(0.5));
     CHECK(painted.ao_strength == doctest::Approx(0.8));
-    CHECK(painted.albedo_map.wrap == TextureWrap::clamp_to_edge);  // texture 0's sampler
-    CHECK(painted.metallic_map.wrap == TextureWrap::repeat);      // texture 1 has none
+    CHECK(painted.albedo_map.wrap_s == TextureWrap::clamp_to_edge);  // texture 0's sampler: wrapS clamps,
+    CHECK(painted.albedo_map.wrap_t == TextureWrap::repeat);         // wrapT repeats
+    CHECK(painted.metallic_map.wrap_s == TextureWrap::repeat);     // texture 1 has none
     // No flip: texel (0, 0) is the PNG's top-left (red), (0, 1) the bottom-left (blue).
     const texture::Texture& albedo = *content.textures[std::size_t(painted.albedo_map.texture)];
     CHECK(albedo.width() == 2);
