@@ -14,14 +14,10 @@ build="$root/build-avx512emu"
 jobs="$(nproc)"
 
 bash "$root/tools/install_dependencies.sh"
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$root}"
-fi
+source "$root/tools/compiler_cache.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_TESTS=ON \
   -DTESSERA_BUILD_GL_REFERENCE=OFF -DTESSERA_BUILD_MICROBENCH=OFF -DTESSERA_EMULATE_AVX512=ON \
-  "${launcher[@]}" >/dev/null
+  "${compiler_cache[@]}" >/dev/null
 
 if [ "${1:-}" = --all ]; then
   cmake --build "$build" -j"$jobs"

@@ -11,7 +11,10 @@
 # and git, as a new user's machine) is cached as a tarball in $TESSERA_FRESH_CACHE
 # (default /var/cache/tessera/fresh-machine) and reused; downloaded .deb files are cached
 # there too, which saves time without hiding anything: each root still has to install every
-# package itself. Only committed work is checked (the clone is of HEAD).
+# package itself. The compiler cache is shared the same way (ccache's folder on this machine,
+# or $TESSERA_FRESH_CCACHE, mounted as each root's ~/.cache/ccache): the roots install ccache
+# with the full package set, and a hit only spares compiling a source that was compiled
+# identically before. Only committed work is checked (the clone is of HEAD).
 # Exit status: 0 when all four commands passed, 1 when any failed, 2 when it cannot run.
 set -euo pipefail
 
@@ -85,6 +88,14 @@ trap cleanup EXIT
 trap 'exit 130' INT TERM
 
 mkdir -p "$cache/archives"
+# This machine's compiler cache when it has ccache (CI's own builds of the commit warm it), else
+# one kept beside the .deb files.
+if [ -n "${TESSERA_FRESH_CCACHE:-}" ]; then ccache_dir="$TESSERA_FRESH_CCACHE"
+elif command -v ccache >/dev/null; then ccache_dir="$(ccache -k cache_dir)"
+else ccache_dir="$cache/ccache"; fi
+ccache_max="$(command -v ccache >/dev/null && ccache -k max_size || echo 5G)"
+mkdir -p "$ccache_dir"
+echo "== compiler cache shared into the roots: $ccache_dir (max $ccache_max)"
 if [ -f "$tarball" ] && [ -n "$(find "$tarball" -mtime -"$max_age_days")" ]; then
   echo "== reusing the cached Debian 12 root $tarball"
 else
@@ -106,6 +117,8 @@ new_root() {
   mount --rbind /sys "$root/sys"; mount --make-rslave "$root/sys"; mounted+=("$root/sys")
   mount --rbind /dev "$root/dev"; mount --make-rslave "$root/dev"; mounted+=("$root/dev")
   mount --bind "$cache/archives" "$root/var/cache/apt/archives"; mounted+=("$root/var/cache/apt/archives")
+  mkdir -p "$root/root/.cache/ccache"
+  mount --bind "$ccache_dir" "$root/root/.cache/ccache"; mounted+=("$root/root/.cache/ccache")
   mkdir -p "$root/work"
   git clone -q --no-hardlinks "$repo" "$root/work/tessera"
   git -C "$root/work/tessera" checkout -q --detach "$commit"
@@ -131,7 +144,8 @@ failed=0
 # from the clone's top folder. Records its exit status and wall time.
 run_command() {
   local root="$1" order="$2" cmd="$3" log="$log_dir/$2-$(basename "${3##* }" .sh).log"
-  local start end status
+  local start end status stats="$root/root/ccache-stats.log"
+  rm -f "$stats"
   echo "== [$order] $cmd ($(date +%T)), log: $log"
   start=$(date +%s.%N)
   # In the background, in a process group of its own, and waited for: bash runs the INT/TERM
@@ -140,6 +154,7 @@ run_command() {
   set +e
   setsid chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+    CCACHE_MAXSIZE="$ccache_max" CCACHE_STATSLOG=/root/ccache-stats.log \
     /bin/bash -c "cd /work/tessera && $cmd" >"$log" 2>&1 </dev/null &
   command_pid=$!
   wait "$command_pid"
@@ -152,7 +167,14 @@ run_command() {
   if [ "$status" -eq 0 ] && [ "$cmd" = "$quickstart" ] && [ ! -s "$root/work/tessera/spheres.png" ]; then
     echo "   $cmd exited 0 but wrote no spheres.png"; status=1
   fi
-  results+=("$(printf '%-22s %-26s exit %-3s %5s s' "[$order]" "$cmd" "$status" "$wall")")
+  # What the compiler cache spared: compilations through ccache that were hits (none when the
+  # command ran before ccache was installed).
+  local hits=0 compiles=0
+  if [ -s "$stats" ]; then
+    hits=$(grep -cE '^(direct|preprocessed)_cache_hit$' "$stats" || true)
+    compiles=$(grep -cE '^((direct|preprocessed)_cache_hit|cache_miss)$' "$stats" || true)
+  fi
+  results+=("$(printf '%-22s %-26s exit %-3s %5s s   ccache hits %s/%s' "[$order]" "$cmd" "$status" "$wall" "$hits" "$compiles")")
   echo "   exit $status after ${wall} s"
   if [ "$status" -ne 0 ]; then
     failed=1

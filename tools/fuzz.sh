@@ -13,9 +13,10 @@ build="$root/build-fuzz"
 targets=(scene_parser gltf_loader rasterizer)
 
 bash "$root/tools/install_dependencies.sh"
+source "$root/tools/compiler_cache.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DTESSERA_BUILD_FUZZERS=ON -DTESSERA_BUILD_TESTS=OFF -DTESSERA_BUILD_GL_REFERENCE=OFF \
-  -DTESSERA_BUILD_MICROBENCH=OFF >/dev/null
+  -DTESSERA_BUILD_MICROBENCH=OFF "${compiler_cache[@]}" >/dev/null
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 # Leaks in uninstrumented libraries (oneTBB's worker threads) are not findings.

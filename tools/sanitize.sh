@@ -11,8 +11,9 @@ case "$sanitizers" in
 esac
 
 bash "$root/tools/install_dependencies.sh"
+source "$root/tools/compiler_cache.sh"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DTESSERA_SANITIZE="$sanitizers" \
-  -DTESSERA_BUILD_GL_REFERENCE=OFF -DTESSERA_BUILD_MICROBENCH=OFF >/dev/null
+  -DTESSERA_BUILD_GL_REFERENCE=OFF -DTESSERA_BUILD_MICROBENCH=OFF "${compiler_cache[@]}" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 # Any ASan report (leaks included) or UBSan report fails the test that caused it,
 # except the third-party leaks listed in tools/lsan.supp.

@@ -32,7 +32,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# Counted by hand in shade_kernels_simd.cpp's point-light path (README, "Many lights"): ~47
+# Counted by hand in shade_kernels_simd.cpp's point-light path: ~47
 # operations on the multiply-add pipes per fragment·light (1/|d| by rsqrt and a Newton step,
 # the unnormalized half vector, the one division of the specular fraction, the Fresnel
 # weight, nine colour × term accumulations), plus a division and a square root that hold

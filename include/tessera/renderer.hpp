@@ -32,9 +32,8 @@ void parse_aov_list(std::string_view list, AovSet& set);
 
 struct RenderSettings {
     int threads = 0;        // worker threads; 0 = one per hardware thread
-    // Screen tile side in pixels, a power of two in [8, 256]. 64 measured 1.02-1.10x
-    // faster than 32 over the race's rows on Zen 5 (README, "Tile size, output
-    // prefetch and gather batches"); the image does not depend on it.
+    // Screen tile side in pixels, a power of two in [8, 256]; the image does not
+    // depend on it.
     int tile_size = 64;
     std::string isa = "auto";  // SIMD kernels: auto | scalar | sse4 | avx2 | avx512
     // Fill RenderedImage::radiance (what EXR output needs). Without it a frame

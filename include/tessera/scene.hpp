@@ -113,7 +113,7 @@ struct Material {
 
 enum class LightType { point, directional, spot };
 
-// A light (reference/pbr_lighting.md). Point and spot lights fall off with the
+// A light (docs/reference/pbr_lighting.md). Point and spot lights fall off with the
 // inverse square of distance: radiance arriving at distance d is color / d², so
 // color is in radiance·distance² units; a directional light's color is the
 // radiance itself, arriving along `direction` everywhere.
@@ -136,14 +136,11 @@ struct Light {
 
 // The irradiance below which a light counts as negligible for range = "auto":
 // the range is where the light's brightest channel, color / d², falls to this.
-// Chosen by measurement on scenes/many_lights.toml (256 lights): at 1/256 the
-// many culled tails add up (most pixels 2+ steps off); at 1/4096 0.13% of the
-// 8-bit values differ by more than one step from the uncut image (every tail
-// cut per pixel; 0.1% when tails were cut only where a whole tile lay out of
-// range). Glints of far lights on
-// mirror-like surfaces (GGX peak 1/(π·a²) = 5e4 at roughness 0.05) magnify any
-// threshold: those single pixels can differ a lot. tests/render/test_light_culling.cpp
-// holds the scene to that tolerance.
+// A larger threshold lets the many culled tails of a scene of many lights add
+// up to visible steps; tests/render/test_light_culling.cpp holds
+// scenes/many_lights.toml within 0.2% of 8-bit values more than a step off the
+// uncut image. Glints of far lights on mirror-like surfaces magnify any
+// threshold: those single pixels can differ a lot.
 inline constexpr float kAutoRangeIrradiance = 1.0f / 4096.0f;
 
 // range = "auto" for a point or spot light of this colour: sqrt(max(color) / kAutoRangeIrradiance).

@@ -81,7 +81,7 @@ double parse_seconds(const std::string& text) {
     return seconds;
 }
 
-// --time and --animation (glTF animations, README "Command line"); --frames on
+// --time and --animation (glTF animations, docs/cli.md); --frames on
 // a glTF file alone plays its animation at 24 fps.
 void pose_for_render(const RenderCommand& cmd, const std::string& scene_path, tessera::Scene& scene) {
     const bool gltf = tessera::is_gltf_path(scene_path);
@@ -165,7 +165,7 @@ int run_render(const RenderCommand& cmd) {
     return failed.empty() ? 0 : 1;
 }
 
-// Batch rendering: frame ranges of animated scenes, sharding, resuming (README "Batch rendering").
+// Batch rendering: frame ranges of animated scenes, sharding, resuming (docs/batch.md).
 void add_batch_options(CLI::App* command, RenderCommand& render) {
     command->add_option("--frames", render.frames,
                         "Frames of each scene's [animation] (or of a glTF file's animation, at 24 fps) to render: A-B[:STEP] (inclusive), comma-separated; "

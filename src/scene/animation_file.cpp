@@ -1,40 +1,7 @@
-// A scene file's [animation] table. The format (keys not marked required are
-// optional; any other key is an error):
-//
-//   [animation]
-//   frames = 240                     # required: the number of frames, 1..1000000 (frames 0 .. frames − 1)
-//   fps = 24                         # frames per second, > 0; default 24
-//
-//   [animation.orbit]                # a turntable: the camera circles a target (CameraOrbit);
-//   target = [0, 0, 0]               #   default [camera].target
-//   radius = 22                      #   > 0; default [camera].position's distance from the target in XZ
-//   height = 0                       #   above the target; default [camera].position's
-//   start_angle = 0                  #   degrees, 0 = +Z, 90 = +X; default [camera].position's
-//   turns = 1                        #   over the whole animation; default 1
-//                                    # With the defaults, frame 0 is [camera]'s own view.
-//
-//   [animation.camera]               # or camera keyframes (not both with orbit)
-//   interpolation = "smooth"         # "linear" | "smooth" (Interpolation); default "smooth"
-//   keys = [ { frame = 0, position = [0, 0, 22], target = [0, 0, 0], fov_y = 45 },
-//            { frame = 120, position = [10, 5, 18] } ]
-//                                    # each key: frame (required, a number; strictly increasing)
-//                                    # and any of position, target, fov_y; each property moves
-//                                    # through the keys that give it
-//
-//   [[animation.objects]]            # any number
-//   object = 3                       # required: index into [[objects]] (0 = the first), each at most once
-//   interpolation = "linear"         # default "linear"
-//   keys = [ { frame = 0, rotate = [0, 0, 0] }, { frame = 240, rotate = [0, 360, 0] } ]
-//                                    # any of translate, rotate (Euler degrees, per component:
-//                                    # 0 → 360 is a full turn), scale (number or 3 numbers,
-//                                    # non-zero), color (the material's albedo, [0, 1]); what a
-//                                    # key leaves out keeps its [[objects]] value
-//
-//   [[animation.lights]]             # any number
-//   light = 0                        # required: index into [[lights]], each at most once
-//   interpolation = "linear"         # default "linear"
-//   keys = [ { frame = 0, color = [300, 300, 300], position = [-10, 10, 10] } ]
-//                                    # position (point and spot lights), color (>= 0)
+// A scene file's [animation] table: frames, fps, a camera orbit or keyframes,
+// object and light keyframes. The format is in docs/scene-format.md
+// ("[animation]"), its one description: change the two together. Any key not
+// listed there is an error.
 //
 // Loading gives the scene at frame 0; every frame's camera is checked at load
 // (target distinct from position, up not along the view).

@@ -1,4 +1,4 @@
-// Reading a scene file's [animation] table (format in animation_file.cpp).
+// Reading a scene file's [animation] table (format: docs/scene-format.md).
 #pragma once
 
 #include <memory>
@@ -10,8 +10,8 @@
 
 namespace tessera {
 
-// Reads a scene file's [animation] table (src/scene/animation_file.cpp; format
-// there). `root` is the whole document, `scene` what was read from it so far
+// Reads a scene file's [animation] table (format: docs/scene-format.md;
+// implemented in animation_file.cpp). `root` is the whole document, `scene` what was read from it so far
 // (the [[objects]] and [[lights]] the tracks refer to, by index); an object
 // whose colour is animated gets its own copy of its material. Throws
 // SceneError "file:line:column: message".

@@ -1,85 +1,8 @@
 // Scene files: TOML in, a validated tessera::Scene out.
 //
-// The format (every key not marked required is optional; any other key is an
-// error, so typos do not pass silently):
-//
-//   [output]                        # optional table
-//   width = 1280                    # integer in 1..kMaxImageDimension; default 1280
-//   height = 720                    # integer in 1..kMaxImageDimension; default 720
-//                                   # and width · height <= kMaxImagePixels (2^27)
-//   clear_color = [0.1, 0.1, 0.1]   # display-referred RGB, each in [0, 1]; default (0.1, 0.1, 0.1)
-//   msaa = 4                        # samples per pixel, 1 or 4; default 1
-//
-//   [camera]                        # required table
-//   position = [0, 0, 22]           # required, world space
-//   target = [0, 0, 0]              # required, world space; must differ from position
-//   up = [0, 1, 0]                  # default (0, 1, 0); not parallel to target - position
-//   fov_y = 45.0                    # vertical field of view in degrees, in (0, 180); default 45
-//   near = 0.1                      # view-space distance, > 0; default 0.1
-//   far = 100.0                     # view-space distance, > near; default 100
-//
-//   [[lights]]                      # any number, including none
-//   type = "point"                  # "point" | "directional" | "spot"; default "point"
-//   position = [-10, 10, 10]        # point and spot: required, world space
-//   color = [300, 300, 300]         # required, linear RGB, each >= 0: radiance · distance² for
-//                                   # point and spot, the radiance itself for directional
-//   direction = [0, -1, 0]          # directional and spot: required, where the light travels;
-//                                   # any non-zero length (normalized at load)
-//   inner_cone = 0.0                # spot: full radiance within this angle of direction, degrees; default 0
-//   outer_cone = 45.0               # spot: no radiance beyond it, degrees; default 45; 0 <= inner < outer <= 90
-//   range = 12.5                    # point and spot: a number > 0, or "auto"; default unlimited.
-//                                   # Past its range a light adds nothing (Light::range, light culling);
-//                                   # "auto" is where max(color) / d² falls to kAutoRangeIrradiance (1/4096)
-//   A key that does not apply to the light's type (position of a directional light,
-//   cones of a point light...) is an error.
-//
-//   [materials.rusty]               # named materials, any number; defaults are Material{}'s
-//   albedo = [0.5, 0, 0]            # linear RGB, each in [0, 1]
-//   metallic = 0.0                  # [0, 1]
-//   roughness = 0.5                 # [0, 1]
-//   ao = 1.0                        # [0, 1]
-//   emissive = [0, 0, 0]            # HDR radiance added to the shaded colour, each >= 0
-//   albedo_map = "rust/albedo.png"  # texture maps (reference, "Textured variant"): paths relative to
-//   metallic_map = "..."            #   this file; any format OpenImageIO reads. Each multiplies its
-//   roughness_map = "..."           #   factor above, whose default becomes 1 when the map is given
-//   ao_map = "..."                  #   (ao's default is 1 anyway). Metallic, roughness and ao read
-//   normal_map = "..."              #   the red channel; the normal map is tangent space, RGB = n·0.5 + 0.5,
-//   emissive_map = "..."            #   its frame derived as the reference's getNormalFromMap does.
-//   albedo_map_encoding = "gamma2.2"  # "gamma2.2": the reference's pow(texture.rgb, 2.2) after filtering
-//                                   # (default); "srgb": exact sRGB decode before filtering (GL_SRGB8);
-//                                   # "linear": texels are linear. Emissive maps are sRGB.
-//   normal_scale = 1.0              # scales the normal map's x and y
-//   wrap = "repeat"                 # every map of the material: "repeat" | "clamp_to_edge"
-//   double_sided = true             # false: back faces (clockwise on screen; counter-clockwise
-//                                   # under a mirroring transform) are culled, as glTF's doubleSided
-//   alpha_mode = "opaque"           # "mask": fragments whose alpha (alpha × albedo_map's alpha)
-//   alpha = 1.0                     #   is below alpha_cutoff are discarded (glTF's MASK); [0, 1]
-//   alpha_cutoff = 0.5              #   >= 0 (mask only)
-//                                   # "blend": drawn after the opaque objects, back to front, composited
-//                                   #   over them with that alpha (glTF's BLEND; src/image/blend.hpp)
-//
-//   [[objects]]                     # any number, including none
-//   mesh = "sphere"                 # required: "sphere" | "plane" | "cube"
-//   material = "rusty"              # a name from [materials], or an inline table with the
-//                                   # same keys as a named material; default Material{}
-//   translate = [0, 0, 0]           # default (0, 0, 0)
-//   rotate = [0, 45, 0]             # Euler angles in degrees, applied X first, then Y, then Z
-//   scale = [1, 1, 1]               # a number (uniform) or a 3-array, every component non-zero
-//
-//   [[models]]                      # glTF files placed in the scene, any number
-//   file = "helmet/model.glb"       # required: a .gltf or .glb file, relative to this file's folder
-//   translate = [0, 0, 0]           # placement, the same keys and rules as [[objects]]:
-//   rotate = [0, 0, 0]              # each node's world transform is preceded by
-//   scale = 1                       # translate · Rz · Ry · Rx · scale
-//   lights = true                   # whether the file's KHR_lights_punctual lights are added; default true
-//   animation = 0                   # play the file's animation (an index, or its name) over
-//                                   #   [animation]'s frames: at frame f it is at
-//   animation_start = 0.0           #   animation_start + animation_speed · f / fps seconds
-//   animation_speed = 1.0           #   (start: seconds, finite; speed: finite); default: the model
-//   animation_loop = false          #   keeps its rest pose. loop: the time wraps at the animation's end
-//
-//   [animation]                     # frames, fps, camera orbit or keyframes, object and light
-//                                   # keyframes: format in src/scene/animation_file.cpp
+// The format — every table, key, default and limit — is docs/scene-format.md,
+// its one description: change the two together. Any key not listed there is an
+// error, so typos do not pass silently.
 //
 // A model brings its meshes, materials and textures (gltf_import.hpp says what
 // is supported); its cameras are not used ([camera] is). A file placed several

@@ -1,4 +1,4 @@
-// The textured variant's material inputs (reference/pbr_lighting.md, "Textured
+// The textured variant's material inputs (docs/reference/pbr_lighting.md, "Textured
 // variant"): between gathering a tile's fragments and shading them, every
 // textured run of fragments has its factors replaced by factor × texture, its
 // normals perturbed by the normal map, and its emission set. Sampling and the

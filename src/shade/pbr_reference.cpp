@@ -1,5 +1,5 @@
 // The LearnOpenGL direct-lighting PBR fragment shader, line for line
-// (../shared/reference/pbr_lighting.md). Plain float math, no shortcuts: this is
+// (docs/reference/pbr_lighting.md). Plain float math, no shortcuts: this is
 // what the SIMD kernels are measured against.
 #include "shade/pbr_reference.hpp"
 

@@ -1,5 +1,5 @@
 // The reference fragment shader in plain scalar C++: the LearnOpenGL direct
-// lighting PBR shader of ../shared/reference/pbr_lighting.md, term for term and
+// lighting PBR shader of docs/reference/pbr_lighting.md, term for term and
 // with the same names, so it can be checked by eye against the GLSL. The SIMD
 // kernels (shade_kernels.hpp) are tested against it.
 #pragma once

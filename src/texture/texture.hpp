@@ -1,4 +1,4 @@
-// Textures for the textured PBR variant (reference/pbr_lighting.md, "Textured
+// Textures for the textured PBR variant (docs/reference/pbr_lighting.md, "Textured
 // variant"): an image with its full mip chain and OpenGL's sampling rules,
 // GL_LINEAR magnification and GL_LINEAR_MIPMAP_LINEAR minification, with
 // GL_REPEAT or GL_CLAMP_TO_EDGE wrapping. The scalar samplers are the reference

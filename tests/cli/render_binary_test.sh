@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tessera render does not load OpenImageIO (README "Image files"): its ELF
+# tessera render does not load OpenImageIO (docs/cli.md, "Image files"): its ELF
 # DT_NEEDED entries and ldd's full closure name no libOpenImageIO, while
 # tessera-tools and the module beside it do; the tool sub-commands still run
 # as `tessera SUBCOMMAND`; a texture format that needs the module says so,

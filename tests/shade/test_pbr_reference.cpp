@@ -1,5 +1,5 @@
 // The scalar reference shader against values worked out by hand from the GLSL
-// formulas (../shared/reference/pbr_lighting.md). Expected values are computed
+// formulas (docs/reference/pbr_lighting.md). Expected values are computed
 // here in double precision from the formulas written out, not from the code under test.
 #include <cmath>
 #include <vector>

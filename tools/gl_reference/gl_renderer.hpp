@@ -1,5 +1,5 @@
 // A peer renderer: the same scene drawn by OpenGL 3.3 core with the ORIGINAL GLSL of
-// ../shared/reference/pbr_lighting.md, on Mesa's llvmpipe (a CPU driver) through an
+// docs/reference/pbr_lighting.md, on Mesa's llvmpipe (a CPU driver) through an
 // EGL surfaceless context. It checks Tessera's pixels against an independent
 // implementation and gives a CPU rasterizer to race. Not part of the pipeline:
 // nothing under src/ may include it.

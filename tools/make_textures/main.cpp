@@ -1,7 +1,7 @@
 // tessera_make_textures OUT_DIR
 //
 // Writes the rusted-metal texture set of the textured demo
-// (reference/pbr_lighting.md, "Textured variant"), 512×512 8-bit PNGs:
+// (docs/reference/pbr_lighting.md, "Textured variant"), 512×512 8-bit PNGs:
 //   albedo.png     RGB, sRGB-encoded base colour (load with ColorSpace::srgb)
 //   metallic.png   grey, linear
 //   roughness.png  grey, linear
