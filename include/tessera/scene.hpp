@@ -20,6 +20,9 @@ namespace texture {
 class Texture;
 }
 struct GltfRig;
+namespace environment {
+struct EnvironmentMaps;  // environment/precompute.hpp: the IBL maps of one equirectangular image
+}
 struct Animation;  // tessera/animation.hpp: what changes from frame to frame
 
 // Limits on what a scene may ask for, named in one place.
@@ -219,6 +222,18 @@ struct PosedGltfModel {
     bool loop = false;
 };
 
+// Image-based lighting (docs/reference/ibl_lighting.md): an equirectangular
+// HDR image lights every surface through LearnOpenGL's split-sum ambient term,
+// in place of the reference's 0.03·albedo·ao, and may be shown behind the scene.
+struct EnvironmentLight {
+    std::shared_ptr<const environment::EnvironmentMaps> maps;  // null: no environment (the reference look)
+    std::string file;               // where the image came from, for messages
+    float intensity = 1.0f;         // scales the image's radiance; finite, >= 0
+    float rotation_degrees = 0.0f;  // turns the image about +Y (right-handed); finite
+    bool background = true;         // shown where no surface is (else the clear colour)
+    bool present() const { return maps != nullptr; }
+};
+
 struct Scene {
     std::string source;  // where the scene came from, for messages
     int width = 1280;    // output size in pixels, 1..kMaxImageDimension
@@ -230,6 +245,13 @@ struct Scene {
     int msaa = 1;
     Camera camera;
     std::vector<Light> lights;
+    // The lights are default_light_rig's (a glTF file with none of its own):
+    // the CLI's default look replaces them.
+    bool default_lights = false;
+    EnvironmentLight environment;
+    // Radiance is scaled by 2^exposure_ev before tonemapping (and in the EXR);
+    // 0 leaves every value untouched. Finite.
+    float exposure_ev = 0.0f;
     std::vector<Material> materials;
     std::vector<std::shared_ptr<const texture::Texture>> textures;  // what TextureSlot::texture indexes
     std::vector<Mesh> meshes;

@@ -7,6 +7,7 @@
 
 #include <sys/resource.h>
 
+#include "cli/frame_options.hpp"
 #include "profile/frame_profile_output.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/scene.hpp"
@@ -37,6 +38,7 @@ Summary summarize(std::vector<double> values) {
 
 int run_bench(const BenchCommand& cmd) {
     Scene scene = load_scene_file(cmd.scene_path);
+    apply_lighting_options(cmd.lighting, cmd.scene_path, scene);
     if (cmd.width > 0) scene.width = cmd.width;
     if (cmd.height > 0) scene.height = cmd.height;
     if (cmd.msaa > 0) scene.msaa = cmd.msaa;

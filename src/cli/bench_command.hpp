@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "cli/frame_options.hpp"
 #include "tessera/renderer.hpp"
 
 namespace tessera::cli {
@@ -22,6 +23,7 @@ struct BenchCommand {
     std::string heatmap_path;    // PNG of the tiles' cost over the last frame, if set
     std::string heatmap_metric = "time";  // time | work
     RenderSettings settings;
+    LightingOptions lighting;
 };
 
 int run_bench(const BenchCommand& cmd);

@@ -37,6 +37,7 @@ namespace {
 struct RenderCommand {
     std::vector<std::string> scene_paths;
     std::vector<std::string> outputs;  // may hold {scene} and {frame} (src/batch/frames.hpp)
+    tessera::cli::LightingOptions lighting;
     int width = 0;                     // 0: the scene's own
     int height = 0;
     int msaa = 0;                      // 0: the scene's own
@@ -108,6 +109,7 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
     tessera::Scene scene = tessera::load_scene_file(scene_path, models, cmd.camera);
     if (scene_path == cmd.scene_paths.back()) models.clear();
     pose_for_render(cmd, scene_path, scene);
+    tessera::cli::apply_lighting_options(cmd.lighting, scene_path, scene);
     if (cmd.stats)
         tessera::cli::print_load_stats(before, tessera::cli::read_load_counters(),
                                        tessera::cli::milliseconds_since(start));
@@ -221,6 +223,7 @@ int main(int argc, char** argv) {
                            "roughness, metallic, position (channels Z, N.XYZ, albedo.RGB, roughness, metallic, P.XYZ)")
         ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
     tessera::cli::add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
+    tessera::cli::add_lighting_options(render_app, render.lighting);
     render_app->add_flag("--stats", render.stats, "Print triangle and fragment counts and time per stage");
     add_batch_options(render_app, render);
     add_input_limit_options(render_app, render);

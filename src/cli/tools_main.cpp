@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
     bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
     tessera::cli::add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
+    tessera::cli::add_lighting_options(bench_app, bench.lighting);
     bench_app->add_flag("--json", bench.json, "Print one JSON object");
     bench_app->add_flag("--cull-back-faces", bench.cull_back_faces,
                         "Draw every material single-sided (back faces culled), as double_sided = false");

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -23,6 +24,7 @@
 #include "geometry/draw_order.hpp"
 #include "geometry/vertex_stage.hpp"
 #include "image/blend.hpp"
+#include "image/environment_background.hpp"
 #include "image/resolve.hpp"
 #include "raster/bin_rasterizer.hpp"
 #include "raster/blend_raster.hpp"
@@ -75,6 +77,9 @@ struct WorkerScratch {
     std::uint64_t tile_triangles = 0;  // rasterized in the current tile (profile)
     std::uint32_t tile_light_count = 0;  // lights shaded in the current tile (profile)
     std::vector<ProfileSpan> spans;    // this worker's chunks and tiles, with RenderSettings::profile
+    // Zeros for the ao channel of the direct-light kernels when an environment
+    // gives the ambient term instead (their 0.03·albedo·0 adds exactly 0).
+    std::vector<float> zero_ao;
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
     void reserve(int tile_side, int msaa) {
@@ -199,6 +204,9 @@ struct Renderer::Frame {
     raster::TileBinIndex tile_bins;                // per tile, the chunks' bins that are not empty
     raster::TileGrid grid;
     shade::ShadingLights lights;
+    shade::IblLighting ibl;                    // the scene's environment; ibl.maps null = none
+    image::EnvironmentBackground background;   // shown where no surface is, if the scene says so
+    float exposure_scale = 1.0f;               // 2^Scene::exposure_ev
     image::ViewDepth view_depth;  // for the depth AOV
     tbb::enumerable_thread_specific<WorkerScratch> scratch;
 
@@ -472,6 +480,9 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     size_aov_planes(settings.aovs, pixels, image.aov);
     view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
+    ibl = scene.environment.present() ? shade::ibl_lighting(scene.environment) : shade::IblLighting{};
+    exposure_scale = scene.exposure_ev == 0.0f ? 1.0f : std::exp2(scene.exposure_ev);
+    background = image::EnvironmentBackground(scene, exposure_scale);
     for (WorkerScratch& s : scratch) s.light_culling.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
     for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = s.fragment_lights = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
@@ -589,8 +600,13 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 s.fragments, s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
-            if (blended) image::fill_opaque(s.raster, rect, shaded, clear, s.blend_radiance);
-            else image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+            if (blended) {
+                image::fill_opaque(s.raster, rect, shaded, clear, s.blend_radiance);
+                if (background.shown()) background.paint(rect, &s.raster, nullptr, s.blend_radiance);
+            } else {
+                image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
+                if (background.shown()) background.paint(rect, &s.raster, isa, image);
+            }
             if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
         },
         blended);
@@ -628,8 +644,13 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 s.material_runs);
         },
         [&](std::size_t count, const shade::RadianceOutputs& shaded) {
-            if (blended) image::fill_opaque(s.samples, rect, shaded, clear, s.blend_radiance);
-            else image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
+            if (blended) {
+                image::fill_opaque(s.samples, rect, shaded, clear, s.blend_radiance);
+                if (background.shown()) background.paint(rect, nullptr, &s.samples, s.blend_radiance);
+            } else {
+                image::resolve_tile_msaa(s.samples, rect, count, shaded, clear, isa, image);
+                if (background.shown()) background.paint(rect, s.samples, isa, image);
+            }
             if (!image.aov.empty())
                 image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
         },
@@ -660,6 +681,7 @@ void Renderer::Frame::shade_and_resolve(const Scene& scene, const image::ClearVa
         resolve(count, shaded);
     } else {  // background only
         image::clear_tile(grid.rect(tile), clear, image);
+        if (background.shown()) background.paint(grid.rect(tile), nullptr, isa, image);
     }
     if (blended) {
         const auto blend_start = Clock::now();
@@ -708,6 +730,7 @@ void Renderer::Frame::blend_tile(const Scene& scene, const image::ClearValues& c
         if (scene.msaa > 1) s.samples.reset(grid.tile_size);
         else s.raster.reset(grid.tile_size);
         image::fill_background(rect, clear, s.blend_radiance);
+        if (background.shown()) background.paint(rect, nullptr, nullptr, s.blend_radiance);
     }
     raster::BlendFragments& fragments = s.blend_fragments;
     const auto shade_and_blend = [&] {
@@ -740,22 +763,37 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
         shade::apply_material_maps(isa, scene.textures, s.material_runs, s.fragments, s.material_scratch);
         const shade::FragmentInputs inputs = s.fragments.inputs(count);
         // The fast gather leaves plain runs' material channels unfilled; culled
-        // shading, the AOVs and the scalar kernel read them.
+        // shading, the AOVs, the scalar kernel and the IBL kernels read them.
         const bool culled = settings.light_culling && lights.any_range;
-        const bool channels_read = culled || !image.aov.empty() || isa == simd::Isa::scalar;
+        const bool with_ibl = ibl.maps != nullptr;
+        const bool channels_read = culled || !image.aov.empty() || isa == simd::Isa::scalar || with_ibl;
         if (channels_read) s.fragments.fill_plain_runs(s.material_runs, count);
         else s.fragments.fill_plain_run_edges(s.material_runs, count);
+        // With an environment the direct-light kernels see ao = 0, so that they
+        // give Lo alone; the IBL ambient is added after (ambient + Lo, as pbr.fs).
+        shade::FragmentInputs direct = inputs;
+        if (with_ibl) {
+            if (s.zero_ao.size() < shade::padded_count(count)) s.zero_ao.assign(shade::padded_count(count), 0.0f);
+            direct.ao = s.zero_ao.data();
+        }
         if (culled) {
             const shade::CulledWork work =
-                shade::shade_fragments_culled(isa, inputs, lights, s.light_culling, s.fragments.outputs());
+                shade::shade_fragments_culled(isa, direct, lights, s.light_culling, s.fragments.outputs());
             s.tile_light_count = std::uint32_t(work.tile_lights);
             s.fragment_lights += work.fragment_lights;
         } else {
-            shade::shade_fragment_runs(isa, inputs, s.material_runs, lights, s.fragments.outputs());
+            if (with_ibl) shade::shade_fragments(isa, direct, lights, s.fragments.outputs());
+            else shade::shade_fragment_runs(isa, inputs, s.material_runs, lights, s.fragments.outputs());
             s.tile_light_count = std::uint32_t(lights.count());
             s.fragment_lights += count * lights.count();
         }
+        if (with_ibl) shade::add_ibl_ambient(isa, inputs, lights.cam_pos, ibl, s.fragments.outputs());
         shade::add_emission(s.material_runs, s.fragments);
+        if (exposure_scale != 1.0f) {  // radiance × 2^EV before the tonemap (and in the EXR)
+            const shade::RadianceOutputs out = s.fragments.outputs();
+            for (std::size_t i = 0; i < count; ++i) out.r[i] *= exposure_scale, out.g[i] *= exposure_scale, out.b[i] *= exposure_scale;
+        }
+        // Unlit after the exposure: an unlit colour is what the image shows, whatever the exposure.
         if (any_unlit) [[unlikely]]
             shade::apply_unlit(s.material_runs, s.fragments);
     }

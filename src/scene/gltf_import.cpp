@@ -901,7 +901,10 @@ Scene make_gltf_scene(const GltfContent& content, const std::string& source, con
     } else {
         scene.camera = framing_camera(content.bounds, float(scene.width) / float(scene.height));
     }
-    if (scene.lights.empty()) scene.lights = default_light_rig(scene.camera, content.bounds);
+    if (scene.lights.empty()) {
+        scene.lights = default_light_rig(scene.camera, content.bounds);
+        scene.default_lights = true;
+    }
     validate_scene(scene);
     return scene;
 }

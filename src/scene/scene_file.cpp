@@ -39,6 +39,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
 
+#include "environment/environment_cache.hpp"
 #include "io/input_file.hpp"
 #include "io/nesting_depth.hpp"
 #include "scene/animation_eval.hpp"
@@ -64,7 +65,7 @@ public:
         : TomlReader(std::move(source)), base_dir_(std::filesystem::path(this->source()).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
-        check_keys(root, "", {"output", "camera", "lights", "materials", "objects", "models", "animation"});
+        check_keys(root, "", {"output", "camera", "lights", "environment", "materials", "objects", "models", "animation"});
         Scene scene;
         scene.source = source();
         if (const toml::node* output = root.get("output")) {
@@ -74,6 +75,8 @@ public:
         if (camera == nullptr) fail("missing required table [camera]");
         scene.camera = read_camera(table_of(*camera, "camera"));
         if (const toml::node* lights = root.get("lights")) read_lights(*lights, scene);
+        if (const toml::node* environment = root.get("environment"))
+            read_environment(table_of(*environment, "environment"), scene);
         if (const toml::node* materials = root.get("materials")) read_named_materials(*materials);
         if (const toml::node* objects = root.get("objects")) read_objects(*objects, scene);
         // The file's own textures first: models append theirs after them.
@@ -118,6 +121,26 @@ private:
             if (msaa != 1 && msaa != 4)
                 fail_at(n->source(), "expected 'output.msaa' to be 1 or 4, got " + std::to_string(msaa));
             scene.msaa = static_cast<int>(msaa);
+        }
+    }
+
+    // [environment]: file (an equirectangular .hdr or .exr, relative to the
+    // scene file), intensity >= 0, rotation (degrees about +Y), background.
+    void read_environment(const toml::table& table, Scene& scene) const {
+        check_keys(table, "environment", {"file", "intensity", "rotation", "background"});
+        const toml::node& file_node = require(table, "file", "environment");
+        const std::filesystem::path file = base_dir_ / read_string(file_node, "environment.file");
+        if (const toml::node* n = table.get("intensity"))
+            scene.environment.intensity = read_float(*n, "environment.intensity", kNonNegative);
+        if (const toml::node* n = table.get("rotation"))
+            scene.environment.rotation_degrees = read_float(*n, "environment.rotation");
+        if (const toml::node* n = table.get("background"))
+            scene.environment.background = read_bool(*n, "environment.background");
+        scene.environment.file = file.string();
+        try {
+            scene.environment.maps = environment::acquire_environment(file);
+        } catch (const environment::EnvironmentError& error) {
+            fail_at(file_node.source(), "cannot load the environment for 'environment.file': " + std::string(error.what()));
         }
     }
 

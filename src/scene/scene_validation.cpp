@@ -179,8 +179,18 @@ void validate_objects(const Scene& scene) {
 
 }  // namespace
 
+void validate_environment(const Scene& scene) {
+    const EnvironmentLight& e = scene.environment;
+    if (!(std::isfinite(e.intensity) && e.intensity >= 0.0f))
+        fail(scene, "environment intensity must be finite and >= 0");
+    if (!std::isfinite(e.rotation_degrees)) fail(scene, "environment rotation must be finite");
+    if (!std::isfinite(scene.exposure_ev) || std::fabs(scene.exposure_ev) > 64.0f)
+        fail(scene, "exposure must be a finite number of stops in [-64, 64]");
+}
+
 void validate_scene(const Scene& scene) {
     validate_size(scene);
+    validate_environment(scene);
     validate_camera(scene);
     validate_lights_and_materials(scene);
     validate_meshes(scene);

@@ -32,11 +32,18 @@ std::vector<std::filesystem::path> oiio_module_candidates() {
     return candidates;
 }
 
-TesseraReadImage oiio_module_reader(const std::string& source) {
-    static std::once_flag once;
-    static TesseraReadImage reader = nullptr;
-    static std::string failure;
-    std::call_once(once, [] {
+namespace {
+
+// The module's entry points, loaded once per process (thread-safe).
+struct OiioModule {
+    TesseraReadImage read_image = nullptr;
+    TesseraReadFloatImage read_float_image = nullptr;
+    std::string failure;
+};
+
+const OiioModule& oiio_module() {
+    static const OiioModule loaded = [] {
+        OiioModule m;
         const std::vector<std::filesystem::path> candidates = oiio_module_candidates();
         std::string tried;
         for (const std::filesystem::path& path : candidates) {
@@ -48,18 +55,35 @@ TesseraReadImage oiio_module_reader(const std::string& source) {
             // RTLD_LOCAL: OpenImageIO's symbols stay out of the program's namespace.
             void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
             if (!module) {
-                failure = "OpenImageIO's module '" + path.string() + "' does not load: " + dlerror();
-                return;
+                m.failure = "OpenImageIO's module '" + path.string() + "' does not load: " + dlerror();
+                return m;
             }
-            reader = reinterpret_cast<TesseraReadImage>(dlsym(module, kTesseraOiioModuleEntry));
-            if (!reader) failure = "OpenImageIO's module '" + path.string() + "' has no " + kTesseraOiioModuleEntry;
-            return;  // never closed: it may be used again, and closing OpenImageIO is not safe
+            m.read_image = reinterpret_cast<TesseraReadImage>(dlsym(module, kTesseraOiioModuleEntry));
+            m.read_float_image = reinterpret_cast<TesseraReadFloatImage>(dlsym(module, kTesseraOiioModuleFloatEntry));
+            if (!m.read_image || !m.read_float_image)
+                m.failure = "OpenImageIO's module '" + path.string() + "' has no " + kTesseraOiioModuleEntry + " or " +
+                            kTesseraOiioModuleFloatEntry;
+            return m;  // never closed: it may be used again, and closing OpenImageIO is not safe
         }
-        failure = "reading this format needs OpenImageIO's module " + std::string(kTesseraOiioModuleFile) +
-                  ", which is not installed (looked for " + tried + ")";
-    });
-    if (!reader) throw TextureError(source + ": " + failure);
-    return reader;
+        m.failure = "reading this format needs OpenImageIO's module " + std::string(kTesseraOiioModuleFile) +
+                    ", which is not installed (looked for " + tried + ")";
+        return m;
+    }();
+    return loaded;
+}
+
+}  // namespace
+
+TesseraReadImage oiio_module_reader(const std::string& source) {
+    const OiioModule& m = oiio_module();
+    if (!m.read_image) throw TextureError(source + ": " + m.failure);
+    return m.read_image;
+}
+
+TesseraReadFloatImage oiio_module_float_reader(const std::string& source) {
+    const OiioModule& m = oiio_module();
+    if (!m.read_float_image) throw TextureError(source + ": " + m.failure);
+    return m.read_float_image;
 }
 
 }  // namespace tessera::texture

@@ -16,6 +16,8 @@ namespace tessera::texture {
 // TextureError "<source>: reading this format needs OpenImageIO's module
 // '<path>': <why>" when it is missing or broken.
 TesseraReadImage oiio_module_reader(const std::string& source);
+// The same module's float reader (environment maps), with the same errors.
+TesseraReadFloatImage oiio_module_float_reader(const std::string& source);
 
 // Where the module is looked for, first to last.
 std::vector<std::filesystem::path> oiio_module_candidates();

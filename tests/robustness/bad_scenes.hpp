@@ -34,6 +34,17 @@ inline const std::vector<BadScene>& bad_scenes() {
         {"bare_word_value", TESSERA_CAMERA "fov_y = wide\n", {"@:4:"}},
         {"binary_garbage", std::string_view("\x00\xff\xfe[[\x01", 6), {"@:1:"}},
         {"invalid_utf8_string", TESSERA_CAMERA "[materials.a]\nalbedo = \"\xc3\x28\"\n", {"@:5:"}},
+        // [environment]: its file (missing, not an image, not HDR) and values.
+        {"environment_missing_file", TESSERA_CAMERA "[environment]\nfile = \"no/such/sky.hdr\"\n",
+         {"@:5:8:", "cannot load the environment for 'environment.file'", "no/such/sky.hdr", "no such file"}},
+        {"environment_not_hdr", TESSERA_CAMERA "[environment]\nfile = \"sky.png\"\n",
+         {"@:5:8:", "expected a Radiance .hdr or OpenEXR .exr environment image"}},
+        {"environment_nan_intensity", TESSERA_CAMERA "[environment]\nfile = \"sky.hdr\"\nintensity = nan\n",
+         {"@:6:13:", "environment.intensity"}},
+        {"environment_negative_intensity", TESSERA_CAMERA "[environment]\nfile = \"sky.hdr\"\nintensity = -1\n",
+         {"@:6:13:", "expected 'environment.intensity' to be >= 0"}},
+        {"environment_no_file", TESSERA_CAMERA "[environment]\nintensity = 1\n", {"environment", "file"}},
+        {"environment_unknown_key", TESSERA_CAMERA "[environment]\nfile = \"sky.hdr\"\nblur = 2\n", {"@:6:", "blur"}},
         // Textures.
         {"missing_texture", TESSERA_CAMERA "[materials.a]\nalbedo_map = \"no/such/albedo.png\"\n",
          {"@:5:14:", "cannot load the texture for 'materials.a.albedo_map'", "no/such/albedo.png"}},

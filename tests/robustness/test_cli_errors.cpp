@@ -353,3 +353,39 @@ TEST_CASE("the CLI imports a model shared by several scenes once") {
     CHECK(fs::exists(dir / "first.png"));
     CHECK(fs::exists(dir / "second.png"));
 }
+
+// --environment and [environment] with a bad image: one line naming the image, exit 1, no output.
+TEST_CASE("the CLI refuses missing, truncated, non-HDR and mis-sized environment images") {
+    const fs::path dir = tessera::test::output_dir("cli_bad_environment");
+    const fs::path scene = dir / "small.toml";
+    write_file(scene, kSmallScene);
+    const std::string exr = read_file(tessera::test::source_dir() / "scenes" / "environments" / "studio_256.exr");
+    write_file(dir / "truncated.exr", exr.substr(0, 500));
+    write_file(dir / "text.hdr", "not an image\n");
+    write_file(dir / "wide.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1000000\n");
+    write_file(dir / "empty.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n");
+    for (const char* name : {"missing.hdr", "truncated.exr", "text.hdr", "wide.hdr", "empty.hdr"}) {
+        const std::string image = (dir / name).string();
+        CAPTURE(image);
+        fs::remove(dir / "out.png");
+        const Run run = tessera_render(dir, {scene.string(), "--environment", image, "-o", (dir / "out.png").string()});
+        CHECK(run.status == 1);
+        CHECK_MESSAGE((contains(run.err, "tessera: error: ") && contains(run.err, image)), run.err);
+        CHECK_FALSE(fs::exists(dir / "out.png"));
+    }
+    // The same from a scene file, with its position.
+    const fs::path with_environment = dir / "with_environment.toml";
+    write_file(with_environment, std::string(kSmallScene) + "[environment]\nfile = \"wide.hdr\"\n");
+    const Run run = tessera_render(dir, {with_environment.string(), "-o", (dir / "out.png").string()});
+    CHECK(run.status == 1);
+    CHECK_MESSAGE((contains(run.err, with_environment.string() + ":13:8: cannot load the environment") &&
+                   contains(run.err, "1000000x1")),
+                  run.err);
+    // And the flags' values.
+    for (const std::vector<std::string>& flag : {std::vector<std::string>{"--environment-intensity", "nan"},
+                                                 {"--environment-intensity", "-2"}, {"--exposure", "inf"}, {"--lighting", "studio"}}) {
+        const Run bad = tessera_render(dir, {scene.string(), flag[0], flag[1], "-o", (dir / "out.png").string()});
+        CHECK(bad.status != 0);
+        CHECK_MESSAGE(contains(bad.err, flag[0]), bad.err);
+    }
+}

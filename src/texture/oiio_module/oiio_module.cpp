@@ -20,10 +20,10 @@ void set_error(char* error, std::size_t error_size, std::string message) {
     std::snprintf(error, error_size, "%s", message.c_str());
 }
 
-}  // namespace
-
-extern "C" __attribute__((visibility("default"))) int tessera_oiio_read_image_v1(
-    const char* path, const TesseraImageSink* sink, char* error, std::size_t error_size, int* header_failed) {
+// Decodes `path` in bands of rows of Sample (UINT8 or FLOAT) into sink.
+template <class Sample, class Sink>
+int read_image(const char* path, const Sink* sink, OIIO::TypeDesc type, char* error, std::size_t error_size,
+               int* header_failed) {
     *header_failed = 0;
     if (error_size > 0) error[0] = '\0';
     try {
@@ -43,10 +43,10 @@ extern "C" __attribute__((visibility("default"))) int tessera_oiio_read_image_v1
         const int channels = std::min(spec.nchannels, 4);
         const std::size_t row_samples = std::size_t(spec.width) * std::size_t(channels);
         const int band_rows = std::max(1, std::min(spec.height, int((1 << 20) / (std::size_t(spec.width) * 4) + 1)));
-        std::vector<std::uint8_t> band(row_samples * std::size_t(band_rows));
+        std::vector<Sample> band(row_samples * std::size_t(band_rows));
         for (int y = 0; y < spec.height; y += band_rows) {
             const int y_end = std::min(spec.height, y + band_rows);
-            if (!input->read_scanlines(0, 0, spec.y + y, spec.y + y_end, 0, 0, channels, OIIO::TypeDesc::UINT8,
+            if (!input->read_scanlines(0, 0, spec.y + y, spec.y + y_end, 0, 0, channels, type,
                                        band.data())) {
                 set_error(error, error_size, input->geterror());
                 return 0;
@@ -58,4 +58,16 @@ extern "C" __attribute__((visibility("default"))) int tessera_oiio_read_image_v1
         set_error(error, error_size, e.what());
         return 0;
     }
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) int tessera_oiio_read_image_v1(
+    const char* path, const TesseraImageSink* sink, char* error, std::size_t error_size, int* header_failed) {
+    return read_image<std::uint8_t>(path, sink, OIIO::TypeDesc::UINT8, error, error_size, header_failed);
+}
+
+extern "C" __attribute__((visibility("default"))) int tessera_oiio_read_float_image_v1(
+    const char* path, const TesseraFloatImageSink* sink, char* error, std::size_t error_size, int* header_failed) {
+    return read_image<float>(path, sink, OIIO::TypeDesc::FLOAT, error, error_size, header_failed);
 }

@@ -27,8 +27,19 @@ struct TesseraImageSink {
 typedef int (*TesseraReadImage)(const char* path, const TesseraImageSink* sink, char* error,
                                 std::size_t error_size, int* header_failed);
 
+// The same for scene-linear float images (environment maps): rows of 32-bit
+// floats, min(channels, 4) a pixel, as OpenImageIO converts the stored data.
+struct TesseraFloatImageSink {
+    void* context;
+    int (*begin)(void* context, int width, int height, int depth, int channels);
+    int (*rows)(void* context, int y_begin, int y_end, const float* samples);
+};
+typedef int (*TesseraReadFloatImage)(const char* path, const TesseraFloatImageSink* sink, char* error,
+                                     std::size_t error_size, int* header_failed);
+
 }  // extern "C"
 
 // The module's file name (beside the tessera binary) and its entry point.
 inline constexpr const char* kTesseraOiioModuleFile = "tessera-oiio-module.so";
 inline constexpr const char* kTesseraOiioModuleEntry = "tessera_oiio_read_image_v1";
+inline constexpr const char* kTesseraOiioModuleFloatEntry = "tessera_oiio_read_float_image_v1";

@@ -1,0 +1,196 @@
+// The IBL ambient term (ibl_reference.cpp) over xsimd batches, one fragment a
+// lane, compiled once per ISA. Every operation is the reference's, in its
+// order, without contraction (src/shade/CMakeLists.txt): the kernels give the
+// reference's bits. Cube map taps are hardware gathers of the seamless,
+// bordered faces (environment/cube_map.hpp); the face, texel and level of
+// each tap are worked out per lane, in float (every index is an integer
+// below 2^24, so exact).
+#include <cstddef>
+#include <cstdint>
+
+#include "simd/kernel_prelude.hpp"
+
+#include "shade/ibl_reference.hpp"
+#include "shade/shade_kernels.hpp"
+#include "simd/hardware_gather.hpp"
+
+namespace tessera::shade {
+namespace {
+
+using Arch = TESSERA_SIMD_ARCH;
+using Batch = xsimd::batch<float, Arch>;
+using Int = xsimd::batch<std::int32_t, Arch>;
+using Mask = xsimd::batch_bool<float, Arch>;
+
+struct V3 {
+    Batch x, y, z;
+};
+V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+V3 operator*(const V3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
+V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+// glm's order: (x·x' + y·y') + z·z', no fused operations.
+Batch dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+V3 normalize(const V3& v) {
+    const Batch inv = Batch(1.0f) / xsimd::sqrt(dot(v, v));  // glm::inversesqrt
+    return v * inv;
+}
+V3 load3(const float* x, const float* y, const float* z, std::size_t i) {
+    return {xsimd::load_unaligned(x + i), xsimd::load_unaligned(y + i), xsimd::load_unaligned(z + i)};
+}
+Batch gather(const float* base, const Batch& index) { return simd::hardware_gather(base, xsimd::to_int(index)); }
+V3 gather3(const float* base, const Batch& index) {
+    return {gather(base, index), gather(base, index + Batch(1.0f)), gather(base, index + Batch(2.0f))};
+}
+
+// environment::face_coords per lane.
+struct Face {
+    Batch face, s, t;
+};
+Face face_coords(const V3& d) {
+    const Batch zero(0.0f);
+    const Batch ax = xsimd::abs(d.x), ay = xsimd::abs(d.y), az = xsimd::abs(d.z);
+    const Mask is_x = (ax >= ay) && (ax >= az);
+    const Mask is_y = !is_x && (ay >= az);
+    const Mask x_pos = d.x >= zero, y_pos = d.y >= zero, z_pos = d.z >= zero;
+    const Batch face = xsimd::select(is_x, xsimd::select(x_pos, Batch(0.0f), Batch(1.0f)),
+                                     xsimd::select(is_y, xsimd::select(y_pos, Batch(2.0f), Batch(3.0f)),
+                                                   xsimd::select(z_pos, Batch(4.0f), Batch(5.0f))));
+    const Batch ma = xsimd::select(is_x, ax, xsimd::select(is_y, ay, az));
+    const Batch sc = xsimd::select(is_x, xsimd::select(x_pos, -d.z, d.z),
+                                   xsimd::select(is_y, d.x, xsimd::select(z_pos, d.x, -d.x)));
+    const Batch tc = xsimd::select(is_y, xsimd::select(y_pos, d.z, -d.z), -d.y);
+    return {face, Batch(0.5f) * (sc / ma + Batch(1.0f)), Batch(0.5f) * (tc / ma + Batch(1.0f))};
+}
+
+// CubeMap::sample_bilinear at per-lane level sides n and first-texel offsets.
+V3 sample_bilinear(const float* texels, const Face& c, const Batch& n, const Batch& offset) {
+    const Batch u = c.s * n - Batch(0.5f), v = c.t * n - Batch(0.5f);
+    const Batch x0f = xsimd::floor(u), y0f = xsimd::floor(v);
+    const Batch fx = u - x0f, fy = v - y0f;
+    const Batch last = n - Batch(1.0f);
+    const Batch x0 = xsimd::min(xsimd::max(x0f, Batch(-1.0f)), last);
+    const Batch y0 = xsimd::min(xsimd::max(y0f, Batch(-1.0f)), last);
+    const Batch row = n + Batch(2.0f);
+    const Batch i00 = Batch(3.0f) * (offset + c.face * (row * row) + (y0 + Batch(1.0f)) * row + (x0 + Batch(1.0f)));
+    const V3 t00 = gather3(texels, i00);
+    const V3 t10 = gather3(texels, i00 + Batch(3.0f));
+    const V3 t01 = gather3(texels, i00 + Batch(3.0f) * row);
+    const V3 t11 = gather3(texels, i00 + Batch(3.0f) * row + Batch(3.0f));
+    const V3 top = t00 + (t10 - t00) * fx;
+    const V3 bottom = t01 + (t11 - t01) * fx;
+    return top + (bottom - top) * fy;
+}
+
+// CubeMap::sample_trilinear (levels >= 2).
+V3 sample_trilinear(const CubeArrays& cube, const V3& d, const Batch& lod) {
+    const Face c = face_coords(d);
+    const float top_level = float(cube.levels - 1);
+    const Batch clamped = xsimd::min(xsimd::max(lod, Batch(0.0f)), Batch(top_level));
+    const Batch l0 = xsimd::min(xsimd::floor(clamped), Batch(top_level - 1.0f));
+    const Batch f = clamped - l0;
+    const Batch l1 = l0 + Batch(1.0f);
+    const V3 a = sample_bilinear(cube.texels, c, gather(cube.size, l0), gather(cube.offset, l0));
+    const V3 b = sample_bilinear(cube.texels, c, gather(cube.size, l1), gather(cube.offset, l1));
+    return a + (b - a) * f;
+}
+
+// BrdfLut::sample.
+void sample_brdf(const IblArrays& ibl, const Batch& u, const Batch& v, Batch& a, Batch& b) {
+    const Batch size(ibl.brdf_size);
+    const Batch x = u * size - Batch(0.5f), y = v * size - Batch(0.5f);
+    const Batch x0f = xsimd::floor(x), y0f = xsimd::floor(y);
+    const Batch fx = x - x0f, fy = y - y0f;
+    const Batch last = size - Batch(1.0f), zero(0.0f);
+    const Batch x0 = xsimd::min(xsimd::max(x0f, zero), last), x1 = xsimd::min(xsimd::max(x0f + Batch(1.0f), zero), last);
+    const Batch y0 = xsimd::min(xsimd::max(y0f, zero), last), y1 = xsimd::min(xsimd::max(y0f + Batch(1.0f), zero), last);
+    const auto tap = [&](const Batch& tx, const Batch& ty, Batch& ra, Batch& rb) {
+        const Batch index = Batch(2.0f) * (ty * size + tx);
+        ra = gather(ibl.brdf, index), rb = gather(ibl.brdf, index + Batch(1.0f));
+    };
+    Batch a00, b00, a10, b10, a01, b01, a11, b11;
+    tap(x0, y0, a00, b00), tap(x1, y0, a10, b10), tap(x0, y1, a01, b01), tap(x1, y1, a11, b11);
+    const Batch top_a = a00 + (a10 - a00) * fx, top_b = b00 + (b10 - b00) * fx;
+    const Batch bottom_a = a01 + (a11 - a01) * fx, bottom_b = b01 + (b11 - b01) * fx;
+    a = top_a + (bottom_a - top_a) * fy;
+    b = top_b + (bottom_b - top_b) * fy;
+}
+
+V3 environment_direction(const IblArrays& ibl, const V3& d) {
+    const Batch c(ibl.cos_rotation), s(ibl.sin_rotation);
+    return {c * d.x - s * d.z, d.y, s * d.x + c * d.z};
+}
+
+void ambient_batch(const FragmentInputs& in, std::size_t i, const V3& cam, const IblArrays& ibl,
+                   const RadianceOutputs& out) {
+    const V3 world = load3(in.world_x, in.world_y, in.world_z, i);
+    const V3 n = normalize(load3(in.normal_x, in.normal_y, in.normal_z, i));
+    const V3 v = normalize(cam - world);
+    const V3 albedo = load3(in.albedo_r, in.albedo_g, in.albedo_b, i);
+    const Batch metallic = xsimd::load_unaligned(in.metallic + i);
+    const Batch roughness = xsimd::load_unaligned(in.roughness + i);
+    const Batch ao = xsimd::load_unaligned(in.ao + i);
+    const Batch base(0.04f);
+    const Batch keep = Batch(1.0f) - metallic;  // glm::mix(x, y, a) = x·(1 − a) + y·a
+    const V3 f0 = {base * keep + albedo.x * metallic, base * keep + albedo.y * metallic, base * keep + albedo.z * metallic};
+    const Batch n_dot_v = xsimd::max(dot(n, v), Batch(0.0f));
+    const V3 minus_v = {-v.x, -v.y, -v.z};
+    const Batch twice = Batch(2.0f) * dot(n, minus_v);
+    const V3 r = minus_v - n * twice;
+
+    const Batch x = xsimd::min(xsimd::max(Batch(1.0f) - n_dot_v, Batch(0.0f)), Batch(1.0f));
+    const Batch x2 = x * x;
+    const Batch w = x2 * x2 * x;
+    const Batch one_minus_rough = Batch(1.0f) - roughness;
+    // glm::max(a, b) is a < b ? b : a.
+    const auto gmax = [](const Batch& a, const Batch& b) { return xsimd::select(a < b, b, a); };
+    const V3 f = {f0.x + (gmax(one_minus_rough, f0.x) - f0.x) * w, f0.y + (gmax(one_minus_rough, f0.y) - f0.y) * w,
+                  f0.z + (gmax(one_minus_rough, f0.z) - f0.z) * w};
+    const Batch one(1.0f), diffuse_weight = one - metallic;
+    const V3 k_d = {(one - f.x) * diffuse_weight, (one - f.y) * diffuse_weight, (one - f.z) * diffuse_weight};
+
+    const Batch intensity(ibl.intensity);
+    const Face nc = face_coords(environment_direction(ibl, n));
+    const V3 irradiance = sample_bilinear(ibl.irradiance.texels, nc, Batch(ibl.irradiance.size[0]),
+                                          Batch(ibl.irradiance.offset[0])) * intensity;
+    const V3 diffuse = irradiance * albedo;
+    const V3 prefiltered =
+        sample_trilinear(ibl.prefiltered, environment_direction(ibl, r), roughness * Batch(environment::kMaxReflectionLod)) *
+        intensity;
+    Batch brdf_a, brdf_b;
+    sample_brdf(ibl, n_dot_v, roughness, brdf_a, brdf_b);
+    const V3 specular = {prefiltered.x * (f.x * brdf_a + brdf_b), prefiltered.y * (f.y * brdf_a + brdf_b),
+                         prefiltered.z * (f.z * brdf_a + brdf_b)};
+    const V3 ambient = (k_d * diffuse + specular) * ao;
+    (ambient.x + xsimd::load_unaligned(out.r + i)).store_unaligned(out.r + i);
+    (ambient.y + xsimd::load_unaligned(out.g + i)).store_unaligned(out.g + i);
+    (ambient.z + xsimd::load_unaligned(out.b + i)).store_unaligned(out.b + i);
+}
+
+}  // namespace
+
+void TESSERA_SIMD_ENTRY(add_ibl_ambient)(const FragmentInputs& in, const glm::vec3& cam_pos, const IblArrays& ibl,
+                                         const RadianceOutputs& out) {
+    const V3 cam = {Batch(cam_pos.x), Batch(cam_pos.y), Batch(cam_pos.z)};
+    const std::size_t end = padded_count(in.count);
+    for (std::size_t i = 0; i < end; i += Batch::size) ambient_batch(in, i, cam, ibl, out);
+}
+
+}  // namespace tessera::shade
+
+namespace tessera::shade {
+
+void TESSERA_SIMD_ENTRY(sample_environment_background)(std::size_t count, const float* x, const float* y,
+                                                       const float* z, const CubeArrays& cube, const IblArrays& ibl,
+                                                       float scale, const RadianceOutputs& out) {
+    const std::size_t end = padded_count(count);
+    const Batch n(cube.size[0]), offset(cube.offset[0]), intensity(ibl.intensity);
+    for (std::size_t i = 0; i < end; i += Batch::size) {
+        const Face c = face_coords(environment_direction(ibl, load3(x, y, z, i)));
+        V3 value = sample_bilinear(cube.texels, c, n, offset) * intensity;
+        if (scale != 1.0f) value = value * Batch(scale);
+        value.x.store_unaligned(out.r + i), value.y.store_unaligned(out.g + i), value.z.store_unaligned(out.b + i);
+    }
+}
+
+}  // namespace tessera::shade
