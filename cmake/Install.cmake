@@ -26,7 +26,7 @@ install(TARGETS tessera_oiio_module LIBRARY DESTINATION ${TESSERA_INSTALL_LIBDIR
 
 # The libraries tessera::tessera links, in stage order (a library a stage gains must be added here:
 # install(EXPORT) refuses a target whose dependency is in no export set).
-set(TESSERA_EXPORTED_LIBRARIES tessera_io tessera_simd tessera_texture tessera_scene tessera_draco tessera_geometry
+set(TESSERA_EXPORTED_LIBRARIES tessera_io tessera_simd tessera_texture tessera_environment tessera_scene tessera_draco tessera_geometry
   tessera_raster tessera_shade tessera_image tessera_render)
 install(TARGETS tessera_library ${TESSERA_EXPORTED_LIBRARIES} EXPORT TesseraTargets
   ARCHIVE DESTINATION ${TESSERA_INSTALL_LIBDIR}
@@ -42,3 +42,8 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/TesseraConfigVersion.cmak
   COMPATIBILITY SameMinorVersion)  # 0.x: a new minor version may change the interface
 install(FILES ${PROJECT_BINARY_DIR}/TesseraConfig.cmake ${PROJECT_BINARY_DIR}/TesseraConfigVersion.cmake
   DESTINATION ${TESSERA_INSTALL_CMAKEDIR})
+
+# The environment a glTF file on its own is lit by (src/cli/frame_options.cpp looks for it at
+# bin/../share/tessera/environments/ before the source tree), with its licence.
+install(FILES ${PROJECT_SOURCE_DIR}/scenes/environments/studio_256.exr ${PROJECT_SOURCE_DIR}/scenes/environments/LICENSE.md
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/tessera/environments)
