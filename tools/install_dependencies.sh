@@ -33,6 +33,9 @@ if [ "${1:-all}" != render ]; then
     chromium python3
     # The AVX-512 kernels run emulated on CPUs without AVX-512 (tools/check_avx512_emulated.sh).
     libsimde-dev
+    # The Python module (src/python, TESSERA_BUILD_PYTHON) and its pytest suite (tests/python);
+    # pip, setuptools, wheel and venv for `pip install --no-build-isolation ./python`.
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-pip python3-setuptools python3-wheel python3-venv
   )
 fi
 missing=()

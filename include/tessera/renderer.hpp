@@ -13,8 +13,9 @@ namespace tessera {
 
 // Arbitrary output variables: surface data per pixel, written beside the
 // radiance into the EXR (channel names in image_io.hpp).
-enum class Aov : std::uint8_t { depth, normal, albedo, roughness, metallic, position };
-inline constexpr Aov kAllAovs[] = {Aov::depth, Aov::normal, Aov::albedo, Aov::roughness, Aov::metallic, Aov::position};
+enum class Aov : std::uint8_t { depth, normal, albedo, roughness, metallic, position, object_id, material_id };
+inline constexpr Aov kAllAovs[] = {Aov::depth,    Aov::normal,   Aov::albedo,    Aov::roughness,
+                                   Aov::metallic, Aov::position, Aov::object_id, Aov::material_id};
 std::string_view aov_name(Aov aov);  // as the command line spells it: "depth", "normal", ...
 
 // A selection of AOVs, one bit per Aov.
@@ -70,10 +71,16 @@ struct AovPlanes {
     std::vector<float> roughness;  // [0, 1]. Background: 0
     std::vector<float> metallic;   // [0, 1]. Background: 0
     std::vector<float> position;   // world-space point, XYZ interleaved, world units. Background: (0, 0, 0)
+    // Which object and material the pixel shows (opaque and masked surfaces; blended
+    // ones are drawn over and leave these as they were). object_id: Object::id, or
+    // the object's index + 1 where that is 0; material_id: Object::material + 1.
+    // Background: 0. The same for any thread count and run.
+    std::vector<std::uint32_t> object_id;
+    std::vector<std::uint32_t> material_id;
 
     bool empty() const {
         return depth.empty() && normal.empty() && albedo.empty() && roughness.empty() && metallic.empty() &&
-               position.empty();
+               position.empty() && object_id.empty() && material_id.empty();
     }
 };
 
@@ -151,6 +158,11 @@ public:
 
     // The returned image stays valid until the next render().
     const RenderedImage& render(const Scene& scene);
+    // Exchanges the last frame's image with `other`: the caller keeps the frame
+    // without a copy, and the next render() writes into other's memory (reused
+    // where large enough, so a caller that hands back its previous frame's image
+    // allocates nothing in steady state).
+    void swap_image(RenderedImage& other);
     const FrameStats& last_frame_stats() const;
     // The last frame's timeline; empty unless RenderSettings::profile is set.
     const FrameProfile& last_frame_profile() const;

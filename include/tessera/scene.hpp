@@ -180,6 +180,13 @@ struct Camera {
     float fov_y_degrees = 45.0f;           // vertical field of view, (0, 180)
     float near_plane = 0.1f;               // view-space distances, 0 < near < far
     float far_plane = 100.0f;
+    // A camera given as matrices instead (intrinsics K and an extrinsic, as the
+    // Python module's Camera.from_intrinsics makes them): when set, view_matrix()
+    // and projection_matrix() return these, for any image size. position (the
+    // shader's camPos), target and up must still describe the same camera.
+    bool explicit_matrices = false;
+    glm::mat4 view{1.0f};        // world -> view space, OpenGL's: looking along -Z, +Y up
+    glm::mat4 projection{1.0f};  // view -> clip space, OpenGL's: clip z in [-w, w]
 };
 
 // An indexed triangle mesh in object space; positions, normals and uvs run in parallel.
@@ -202,6 +209,13 @@ struct Object {
     std::uint32_t mesh = 0;      // index into Scene::meshes
     std::uint32_t material = 0;  // index into Scene::materials
     glm::mat4 model{1.0f};       // object -> world
+    // The object_id AOV's value: what a person calls one object, so that its
+    // pixels form one mask. The loaders give one id per TOML [[objects]] or
+    // [[models]] entry (all of a model's meshes share it), in file order from 1,
+    // and, for a glTF file loaded as the scene, one per node that places a mesh
+    // (all the mesh's primitives share it), in the scene's node order from 1.
+    // 0 = none given: the renderer uses the object's index + 1.
+    std::uint32_t id = 0;
 };
 
 // A glTF model in the scene that can be posed (it has skins, morph targets or

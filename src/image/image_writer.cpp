@@ -31,9 +31,9 @@ ImageFormat format_for(const std::filesystem::path& path) {
 // One EXR channel: its name, where its values are, and how the file stores it.
 struct ExrChannel {
     const char* name;
-    const float* values;     // this channel's value of pixel 0
-    std::size_t stride;      // floats from one pixel to the next
-    Imf::PixelType format;   // HALF or FLOAT in the file
+    const void* values;      // this channel's value of pixel 0: float, or std::uint32_t for UINT
+    std::size_t stride;      // values from one pixel to the next
+    Imf::PixelType format;   // HALF or FLOAT (from float values) or UINT in the file
 };
 
 // The radiance and every AOV plane the image has, named as OpenEXR and
@@ -45,7 +45,7 @@ struct ExrChannel {
 std::vector<ExrChannel> exr_channels(const RenderedImage& image, const std::filesystem::path& path) {
     const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
     std::vector<ExrChannel> channels;
-    const auto add = [&](const std::vector<float>& plane, const char* plane_name,
+    const auto add = [&](const auto& plane, const char* plane_name,
                          std::initializer_list<const char*> names, Imf::PixelType format) {
         if (plane.empty()) return;
         if (plane.size() != names.size() * pixels)
@@ -61,6 +61,9 @@ std::vector<ExrChannel> exr_channels(const RenderedImage& image, const std::file
     add(image.aov.roughness, "roughness", {"roughness"}, Imf::HALF);
     add(image.aov.metallic, "metallic", {"metallic"}, Imf::HALF);
     add(image.aov.position, "position", {"P.X", "P.Y", "P.Z"}, Imf::FLOAT);
+    // Ids are exact integers: uint, which neither float (past 2^24) nor half could hold.
+    add(image.aov.object_id, "object_id", {"object_id"}, Imf::UINT);
+    add(image.aov.material_id, "material_id", {"material_id"}, Imf::UINT);
     return channels;
 }
 
@@ -85,13 +88,15 @@ std::string write_exr(const std::vector<ExrChannel>& channels, int width, int he
             header.channels().insert(c.name, Imf::Channel(c.format));
             if (c.format == Imf::HALF) {
                 std::vector<Imath::half>& plane = half_planes.emplace_back(pixels);
-                for (std::size_t i = 0; i < pixels; ++i) plane[i] = Imath::half(c.values[i * c.stride]);
+                const float* values = static_cast<const float*>(c.values);
+                for (std::size_t i = 0; i < pixels; ++i) plane[i] = Imath::half(values[i * c.stride]);
                 frame.insert(c.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(plane.data()), sizeof(Imath::half),
                                                 sizeof(Imath::half) * std::size_t(width)));
-            } else {
+            } else {  // FLOAT and UINT: 4 bytes a value, written in place
+                static_assert(sizeof(float) == sizeof(std::uint32_t));
                 const std::size_t x_stride = c.stride * sizeof(float);
-                frame.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(c.values)),
-                                                x_stride, x_stride * std::size_t(width)));
+                frame.insert(c.name, Imf::Slice(c.format, static_cast<char*>(const_cast<void*>(c.values)), x_stride,
+                                                x_stride * std::size_t(width)));
             }
         }
         Imf::OutputFile file(tmp.c_str(), header);

@@ -49,10 +49,15 @@ void write_aov_background(AovPlanes& aov, std::size_t pixel) {
     if (!aov.roughness.empty()) aov.roughness[pixel] = 0.0f;
     if (!aov.metallic.empty()) aov.metallic[pixel] = 0.0f;
     if (!aov.position.empty()) std::fill_n(&aov.position[3 * pixel], 3, 0.0f);
+    if (!aov.object_id.empty()) aov.object_id[pixel] = 0;
+    if (!aov.material_id.empty()) aov.material_id[pixel] = 0;
 }
 
+// Fragment k of `s`, showing triangle `triangle`.
 void write_aov_fragment(AovPlanes& aov, std::size_t pixel, const shade::FragmentInputs& s, std::size_t k,
-                        const ViewDepth& view_depth) {
+                        const ViewDepth& view_depth, const SurfaceIds& ids, std::uint32_t triangle) {
+    if (!aov.object_id.empty()) aov.object_id[pixel] = ids.object_id(triangle);
+    if (!aov.material_id.empty()) aov.material_id[pixel] = ids.material_id(triangle);
     const float x = s.world_x[k], y = s.world_y[k], z = s.world_z[k];
     if (!aov.depth.empty()) aov.depth[pixel] = view_depth(x, y, z);
     if (!aov.normal.empty()) {
@@ -184,13 +189,19 @@ void clear_tile(const raster::TileRect& rect, const ClearValues& clear, Rendered
 }
 
 void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect,
-                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image) {
+                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, const SurfaceIds& ids,
+                      RenderedImage& image) {
+    const bool wants_ids = ids.object_of_chunk != nullptr;
     std::size_t k = 0;
     for (int y = 0; y < rect.height(); ++y) {
         const std::size_t tile_row = std::size_t(y) * coverage.side;
         const std::size_t first = std::size_t(rect.y0 + y) * image.width + rect.x0;
         for (int x = 0; x < rect.width(); ++x) {
-            if (coverage.covered(tile_row + x)) write_aov_fragment(image.aov, first + x, surface, k++, view_depth);
+            // A pixel holds its triangle's position in the tile's list (TileBuffers::triangles),
+            // looked up only for the id AOVs.
+            if (coverage.covered(tile_row + x))
+                write_aov_fragment(image.aov, first + x, surface, k++, view_depth, ids,
+                                   wants_ids ? coverage.triangles.ids[coverage.triangle[tile_row + x]] : 0);
             else write_aov_background(image.aov, first + x);
         }
     }
@@ -286,12 +297,15 @@ void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRec
 }
 
 void resolve_aov_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect,
-                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image) {
+                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, const FragmentIds& ids,
+                           RenderedImage& image) {
     for (int y = 0; y < rect.height(); ++y) {
         const std::size_t first = std::size_t(rect.y0 + y) * image.width + rect.x0;
         for (int x = 0; x < rect.width(); ++x) {
             const std::int32_t k = samples.fragment[std::size_t(raster::kMsaaSamples) * (std::size_t(y) * samples.side + x)];
-            if (k >= 0) write_aov_fragment(image.aov, first + x, surface, std::size_t(k), view_depth);
+            if (k >= 0)
+                write_aov_fragment(image.aov, first + x, surface, std::size_t(k), view_depth, ids.ids,
+                                   ids.ids.object_of_chunk ? ids.triangle[k] : 0);
             else write_aov_background(image.aov, first + x);
         }
     }

@@ -59,12 +59,32 @@ struct ViewDepth {
     }
 };
 
+// The object_id and material_id AOVs of a triangle (AovPlanes), from its id:
+// the renderer's triangle ids carry their chunk of one object's triangles in
+// the bits from chunk_shift up, and the tables hold each chunk's values.
+// Empty (null tables) unless one of the two AOVs was asked for.
+struct SurfaceIds {
+    const std::uint32_t* object_of_chunk = nullptr;
+    const std::uint32_t* material_of_chunk = nullptr;
+    int chunk_shift = 0;
+    std::uint32_t object_id(std::uint32_t triangle) const { return object_of_chunk[triangle >> chunk_shift]; }
+    std::uint32_t material_id(std::uint32_t triangle) const { return material_of_chunk[triangle >> chunk_shift]; }
+};
+
 // Writes one tile of each AOV plane the image has (RenderedImage::aov), each
 // pixel once: covered pixels take the next of `surface.count` fragments (the
-// shader's inputs, in the row-major order they were gathered), the others the
-// planes' background values.
+// shader's inputs, in the row-major order they were gathered) and the ids of
+// their triangle, the others the planes' background values.
 void resolve_aov_tile(const raster::TileBuffers& coverage, const raster::TileRect& rect,
-                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image);
+                      const shade::FragmentInputs& surface, const ViewDepth& view_depth, const SurfaceIds& ids,
+                      RenderedImage& image);
+
+// A 4×-multisampled tile's fragments' ids: fragment k shows triangle `triangle[k]`
+// (raster::TileFragments::triangle).
+struct FragmentIds {
+    SurfaceIds ids;
+    const std::uint32_t* triangle = nullptr;
+};
 
 // The same for a 4×-multisampled tile: each sample takes its fragment's
 // value (TileSamples::fragment) or the background's, and a pixel is the
@@ -80,6 +100,7 @@ void resolve_tile_msaa(const raster::TileSamples& samples, const raster::TileRec
 // is no surface's value): a pixel holds what its sample 0 shows, surface or
 // background.
 void resolve_aov_tile_msaa(const raster::TileSamples& samples, const raster::TileRect& rect,
-                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, RenderedImage& image);
+                           const shade::FragmentInputs& surface, const ViewDepth& view_depth, const FragmentIds& ids,
+                           RenderedImage& image);
 
 }  // namespace tessera::image

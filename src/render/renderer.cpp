@@ -122,7 +122,7 @@ void check_renderable(const Scene& scene) {
 // Sizes the AOV planes the settings ask for (memory kept from frame to
 // frame); the others stay empty and never allocate.
 void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
-    const auto size = [&](Aov which, std::vector<float>& plane, std::size_t per_pixel) {
+    const auto size = [&](Aov which, auto& plane, std::size_t per_pixel) {
         if (!wanted.contains(which)) return plane.clear();
         render::reserve_huge(plane, per_pixel * pixels);
         plane.resize(per_pixel * pixels);
@@ -133,6 +133,8 @@ void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
     size(Aov::roughness, aov.roughness, 1);
     size(Aov::metallic, aov.metallic, 1);
     size(Aov::position, aov.position, 3);
+    size(Aov::object_id, aov.object_id, 1);
+    size(Aov::material_id, aov.material_id, 1);
 }
 
 // Back faces of single-sided materials. Front faces are counter-clockwise in
@@ -157,6 +159,8 @@ std::string_view aov_name(Aov aov) {
     case Aov::roughness: return "roughness";
     case Aov::metallic: return "metallic";
     case Aov::position: return "position";
+    case Aov::object_id: return "object_id";
+    case Aov::material_id: return "material_id";
     }
     return "?";
 }
@@ -208,6 +212,10 @@ struct Renderer::Frame {
     image::EnvironmentBackground background;   // shown where no surface is, if the scene says so
     float exposure_scale = 1.0f;               // 2^Scene::exposure_ev
     image::ViewDepth view_depth;  // for the depth AOV
+    // Per chunk, its object's object_id and material_id AOV values; filled only
+    // when those AOVs are asked for (surface_ids points into them).
+    std::vector<std::uint32_t> chunk_object_id, chunk_material_id;
+    image::SurfaceIds surface_ids;
     tbb::enumerable_thread_specific<WorkerScratch> scratch;
 
     explicit Frame(const RenderSettings& s)
@@ -298,6 +306,7 @@ const FrameStats& Renderer::last_frame_stats() const { return frame_->stats; }
 const FrameProfile& Renderer::last_frame_profile() const { return frame_->profile; }
 std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame_->isa)); }
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
+void Renderer::swap_image(RenderedImage& other) { std::swap(frame_->image, other); }
 
 const RenderedImage& Renderer::render(const Scene& scene) {
     check_renderable(scene);
@@ -412,6 +421,16 @@ void Renderer::Frame::cut_into_chunks(const Scene& scene) {
     }
     object_first_chunk.back() = std::uint32_t(chunk_count);
     any_unlit = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
+    surface_ids = {};
+    if (settings.aovs.contains(Aov::object_id) || settings.aovs.contains(Aov::material_id)) {
+        chunk_object_id.resize(chunk_count), chunk_material_id.resize(chunk_count);
+        for (std::size_t c = 0; c < chunk_count; ++c) {
+            const Object& object = scene.objects[chunks[c].object];
+            chunk_object_id[c] = object.id != 0 ? object.id : chunks[c].object + 1;
+            chunk_material_id[c] = object.material + 1;
+        }
+        surface_ids = {chunk_object_id.data(), chunk_material_id.data(), render::kChunkIdShift};
+    }
     blend_chunks.clear();
     for (const std::uint32_t o : geometry::blended_objects_back_to_front(scene))
         for (std::uint32_t c = object_first_chunk[o]; c < object_first_chunk[o + 1]; ++c) blend_chunks.push_back(c);
@@ -607,7 +626,7 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
                 if (background.shown()) background.paint(rect, &s.raster, isa, image);
             }
-            if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, image);
+            if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, surface_ids, image);
         },
         blended);
 }
@@ -652,7 +671,8 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 if (background.shown()) background.paint(rect, s.samples, isa, image);
             }
             if (!image.aov.empty())
-                image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth, image);
+                image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth,
+                                             {surface_ids, s.sample_fragments.triangle.data()}, image);
         },
         blended);
 }

@@ -8,10 +8,12 @@
 namespace tessera {
 
 glm::mat4 view_matrix(const Camera& camera) {
+    if (camera.explicit_matrices) return camera.view;
     return glm::lookAt(camera.position, camera.target, camera.up);
 }
 
 glm::mat4 projection_matrix(const Camera& camera, int width, int height) {
+    if (camera.explicit_matrices) return camera.projection;
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     return glm::perspective(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane,
                             camera.far_plane);

@@ -453,6 +453,8 @@ private:
         auto converted = converted_meshes_.find(mesh_index);
         if (gltf::node_deforms_mesh(model_, node)) own = convert_mesh(mesh_index);
         else if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
+        // One object id per node that places a mesh: its primitives are one object to a person.
+        const auto id = std::uint32_t(++placed_nodes_);
         for (const PlacedPrimitive& primitive : gltf::node_deforms_mesh(model_, node) ? own : converted->second) {
             try {  // an object and its node: ~100 bytes, but 10^5 nodes x 10^5 primitives add up
                 tally_.add(sizeof(Object) + sizeof(int), node_label + "'s objects");
@@ -460,7 +462,7 @@ private:
                 fail(e.what());
             }
             object_nodes_.push_back(node);
-            content_.objects.push_back(Object{primitive.mesh, primitive.material, world});
+            content_.objects.push_back(Object{primitive.mesh, primitive.material, world, id});
             content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world));
         }
     }
@@ -779,6 +781,7 @@ private:
     std::vector<Bounds> mesh_bounds_;                                // per content_.meshes entry, object space
     std::vector<gltf::MeshSource> mesh_sources_;                     // per content_.meshes entry: its glTF primitive
     std::vector<int> object_nodes_;                                  // per content_.objects entry: its node
+    std::size_t placed_nodes_ = 0;                                   // nodes that placed a mesh so far: the object ids
     std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
     std::map<int, gltf::MaterialUvs> uv_mappings_;                     // glTF material -> its maps' uvs
     std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
@@ -842,8 +845,12 @@ void append_gltf_content(Scene& scene, const GltfContent& content, const glm::ma
         scene.materials.push_back(material);
     }
     const auto first_object = std::uint32_t(scene.objects.size());
+    // The file's object ids follow the scene's own (a TOML [[models]] entry then gives its objects one id).
+    std::uint32_t first_id = 0;
+    for (const Object& object : scene.objects) first_id = std::max(first_id, object.id);
     for (const Object& object : content.objects)
-        scene.objects.push_back(Object{object.mesh + first_mesh, object.material + first_material, placement * object.model});
+        scene.objects.push_back(Object{object.mesh + first_mesh, object.material + first_material,
+                                       placement * object.model, first_id + object.id});
     if (content.rig) {
         PosedGltfModel posed;
         posed.rig = content.rig;

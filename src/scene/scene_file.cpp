@@ -477,6 +477,7 @@ private:
             object.material = material_index(table.get("material"), child(name, "material"), scene);
 
             object.model = read_placement(table, name);
+            object.id = std::uint32_t(scene.objects.size() + 1);  // an entry is one object (Object::id)
             scene.objects.push_back(object);
         }
     }
@@ -527,7 +528,11 @@ private:
                 fail_at(file_node.source(), "in '" + child(name, "file") + "': " + error.what());
             }
             const std::size_t first_object = scene.objects.size(), first_light = scene.lights.size();
+            // The whole model is one object (Object::id), numbered after the entries before it.
+            std::uint32_t entry_id = 1;
+            for (const Object& object : scene.objects) entry_id = std::max(entry_id, object.id + 1);
             append_gltf_content(scene, *content, placement, with_lights);
+            for (std::size_t o = first_object; o < scene.objects.size(); ++o) scene.objects[o].id = entry_id;
             // A finite placement of a finite node can still overflow (1e30 · 1e30).
             bool finite = true;
             for (std::size_t o = first_object; o < scene.objects.size(); ++o) finite = finite && finite_matrix(scene.objects[o].model);

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <fstream>
 #include <map>
+#include <set>
 #include <string>
 
 #include <OpenImageIO/imageio.h>
@@ -13,6 +15,7 @@
 
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
+#include "scene/gltf_test_files.hpp"
 #include "test_paths.hpp"
 
 using namespace tessera;
@@ -95,7 +98,8 @@ TEST_CASE("the EXR holds every AOV by its conventional name, with the plane's de
         {"Z", OIIO::TypeDesc::FLOAT},       {"N.X", OIIO::TypeDesc::FLOAT},     {"N.Y", OIIO::TypeDesc::FLOAT},
         {"N.Z", OIIO::TypeDesc::FLOAT},     {"albedo.R", OIIO::TypeDesc::HALF}, {"albedo.G", OIIO::TypeDesc::HALF},
         {"albedo.B", OIIO::TypeDesc::HALF}, {"roughness", OIIO::TypeDesc::HALF}, {"metallic", OIIO::TypeDesc::HALF},
-        {"P.X", OIIO::TypeDesc::FLOAT},     {"P.Y", OIIO::TypeDesc::FLOAT},     {"P.Z", OIIO::TypeDesc::FLOAT}};
+        {"P.X", OIIO::TypeDesc::FLOAT},     {"P.Y", OIIO::TypeDesc::FLOAT},     {"P.Z", OIIO::TypeDesc::FLOAT},
+        {"object_id", OIIO::TypeDesc::UINT}, {"material_id", OIIO::TypeDesc::UINT}};
     REQUIRE(file.channel.size() == expected_formats.size());
     for (const auto& [name, format] : expected_formats) {
         CAPTURE(name);
@@ -139,11 +143,15 @@ TEST_CASE("the EXR holds every AOV by its conventional name, with the plane's de
                 CHECK(std::abs(file.at(x, y, "P.X") - hit.x) < 0.05f * footprint);
                 CHECK(file.at(x, y, "P.Y") == doctest::Approx(kPlaneY).epsilon(1e-5));
                 CHECK(std::abs(file.at(x, y, "P.Z") - hit.z) < 0.05f * footprint);
+                // Read as float, OpenImageIO scales a uint channel into [0, 1]: the ids' values are
+                // checked as uint in "the EXR stores the ids as uint channels, exactly".
+                CHECK(file.at(x, y, "object_id") > 0.0f);
+                CHECK(file.at(x, y, "material_id") > 0.0f);
             } else if (inside < -footprint) {
                 ++background;
                 CHECK(file.at(x, y, "Z") == std::numeric_limits<float>::infinity());
                 for (const char* name : {"N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "roughness",
-                                         "metallic", "P.X", "P.Y", "P.Z"})
+                                         "metallic", "P.X", "P.Y", "P.Z", "object_id", "material_id"})
                     CHECK(file.at(x, y, name) == 0.0f);
             }
             // The radiance is still R, G, B beside the AOVs.
@@ -211,6 +219,8 @@ TEST_CASE("AOV planes are bit-identical for any thread count and tile size") {
         CHECK(same_bits(aov.roughness, reference.aov.roughness));
         CHECK(same_bits(aov.metallic, reference.aov.metallic));
         CHECK(same_bits(aov.position, reference.aov.position));
+        CHECK(aov.object_id == reference.aov.object_id);
+        CHECK(aov.material_id == reference.aov.material_id);
     }
 }
 
@@ -224,6 +234,129 @@ TEST_CASE("AOV lists name each AOV, anything else is refused with the list of na
     CHECK_THROWS_WITH_AS(parse_aov_list("depth,colour", set), doctest::Contains("unknown AOV 'colour'"),
                          std::invalid_argument);
     CHECK_THROWS_WITH_AS(parse_aov_list("depth,,normal", set), doctest::Contains("unknown AOV ''"), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(parse_aov_list("Depth", set), doctest::Contains("depth, normal, albedo, roughness, metallic, position"),
+    CHECK_THROWS_WITH_AS(parse_aov_list("Depth", set), doctest::Contains("depth, normal, albedo, roughness, metallic, position, object_id, material_id"),
                          std::invalid_argument);
+}
+
+namespace {
+
+// Three planes side by side across the view (left, middle, right thirds, with
+// gaps of background between), the middle one given no id.
+Scene three_planes(int msaa = 1) {
+    Scene scene = plane_scene();
+    scene.msaa = msaa;
+    scene.objects.clear();
+    scene.materials.push_back(Material{.albedo = {0.9f, 0.1f, 0.1f}});
+    const float xs[] = {-1.2f, 0.3f, 1.8f};
+    const std::uint32_t ids[] = {7, 0, 40000000};  // past float's exact integers: the EXR's channel must be uint
+    const std::uint32_t materials[] = {1, 0, 1};
+    for (int k = 0; k < 3; ++k) {
+        Object plane;
+        plane.model = glm::scale(glm::translate(glm::mat4(1.0f), {xs[k], kPlaneY, -0.2f}), glm::vec3(0.6f, 1.0f, 1.0f));
+        plane.material = materials[k];
+        plane.id = ids[k];
+        scene.objects.push_back(plane);
+    }
+    return scene;
+}
+
+AovSet ids_only() {
+    AovSet set;
+    set.insert(Aov::object_id);
+    set.insert(Aov::material_id);
+    return set;
+}
+
+}  // namespace
+
+TEST_CASE("object_id and material_id say which object and material each pixel shows, 0 for the background") {
+    for (const int msaa : {1, 4}) {
+        CAPTURE(msaa);
+        const Scene scene = three_planes(msaa);
+        Renderer renderer({.threads = 2, .tile_size = 16, .aovs = ids_only()});
+        const RenderedImage& image = renderer.render(scene);
+        REQUIRE(image.aov.object_id.size() == std::size_t(scene.width) * scene.height);
+        CHECK(image.aov.depth.empty());
+        // Along the middle row: background, plane 7, background, plane 2 (index 1 + 1), background, plane 40000000.
+        const int y = scene.height / 2;
+        std::vector<std::uint32_t> runs;
+        for (int x = 0; x < scene.width; ++x) {
+            const std::size_t i = std::size_t(y) * scene.width + x;
+            const std::uint32_t object = image.aov.object_id[i], material = image.aov.material_id[i];
+            CHECK((object == 0) == (material == 0));
+            if (object == 7 || object == 40000000) CHECK(material == 2);
+            if (object == 2) CHECK(material == 1);
+            if (runs.empty() || runs.back() != object) runs.push_back(object);
+        }
+        CHECK(runs == std::vector<std::uint32_t>{0, 7, 0, 2, 0, 40000000, 0});
+        // The top and bottom rows see past the planes.
+        CHECK(image.aov.object_id[0] == 0);
+        CHECK(image.aov.material_id.back() == 0);
+
+        // Bit-identical for other thread counts and tile sizes.
+        Renderer other({.threads = 3, .tile_size = 64, .aovs = ids_only()});
+        CHECK(other.render(scene).aov.object_id == image.aov.object_id);
+        CHECK(other.render(scene).aov.material_id == image.aov.material_id);
+    }
+}
+
+TEST_CASE("the EXR stores the ids as uint channels, exactly") {
+    const Scene scene = three_planes();
+    Renderer renderer({.threads = 2, .aovs = ids_only()});
+    const RenderedImage& image = renderer.render(scene);
+    const auto path = test::output_dir("aov") / "ids.exr";
+    write_image(image, path);
+    auto in = OIIO::ImageInput::open(path.string());
+    REQUIRE_MESSAGE(in, OIIO::geterror());
+    const OIIO::ImageSpec spec = in->spec();
+    REQUIRE(spec.nchannels == 5);  // R G B material_id object_id
+    std::map<std::string, int> channel;
+    for (int c = 0; c < spec.nchannels; ++c) channel[spec.channelnames[c]] = c;
+    REQUIRE(channel.count("object_id") == 1);
+    REQUIRE(channel.count("material_id") == 1);
+    CHECK(spec.channelformat(channel["object_id"]) == OIIO::TypeDesc::UINT);
+    std::vector<std::uint32_t> object_id(image.aov.object_id.size()), material_id(object_id.size());
+    REQUIRE(in->read_image(0, 0, channel["object_id"], channel["object_id"] + 1, OIIO::TypeDesc::UINT32, object_id.data()));
+    REQUIRE(in->read_image(0, 0, channel["material_id"], channel["material_id"] + 1, OIIO::TypeDesc::UINT32,
+                           material_id.data()));
+    CHECK(object_id == image.aov.object_id);
+    CHECK(material_id == image.aov.material_id);
+    CHECK(std::count(object_id.begin(), object_id.end(), 40000000u) > 50);
+}
+
+TEST_CASE("object ids: one per TOML object or model entry, one per glTF node that places a mesh") {
+    const auto dir = test::output_dir("aov");
+    std::ofstream(dir / "parts.gltf") << test::embedded_test_gltf();
+    // The glTF as the scene: nodes "child" and "second" place mesh "parts" (several primitives each).
+    const Scene gltf = load_scene_file(dir / "parts.gltf");
+    std::vector<std::uint32_t> ids;
+    for (const Object& object : gltf.objects) ids.push_back(object.id);
+    REQUIRE(ids.size() >= 4);
+    CHECK(std::count(ids.begin(), ids.end(), 1u) == std::ptrdiff_t(ids.size() / 2));
+    CHECK(std::count(ids.begin(), ids.end(), 2u) == std::ptrdiff_t(ids.size() / 2));
+    CHECK(std::is_sorted(ids.begin(), ids.end()));
+
+    // In a TOML file: [[objects]] first, in order, then each [[models]] entry as one object.
+    std::ofstream(dir / "entries.toml") << R"([camera]
+position = [0, 0, 10]
+target = [0, 0, 0]
+[[objects]]
+mesh = "sphere"
+[[models]]
+file = "parts.gltf"
+[[objects]]
+mesh = "cube"
+[[models]]
+file = "parts.gltf"
+translate = [3, 0, 0]
+)";
+    const Scene toml = load_scene_file(dir / "entries.toml");
+    REQUIRE(toml.objects.size() == 2 + 2 * gltf.objects.size());
+    CHECK(toml.objects[0].id == 1);
+    CHECK(toml.objects[1].id == 2);
+    std::set<std::uint32_t> model_ids[2];
+    for (std::size_t o = 2; o < toml.objects.size(); ++o)
+        model_ids[(o - 2) / gltf.objects.size()].insert(toml.objects[o].id);
+    CHECK(model_ids[0] == std::set<std::uint32_t>{3});
+    CHECK(model_ids[1] == std::set<std::uint32_t>{4});
 }
