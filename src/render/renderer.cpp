@@ -626,7 +626,8 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 image::resolve_tile(s.raster, rect, count, shaded, clear, isa, image);
                 if (background.shown()) background.paint(rect, &s.raster, isa, image);
             }
-            if (!image.aov.empty()) image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, surface_ids, image);
+            if (!image.aov.empty())
+                image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, surface_ids, image);
         },
         blended);
 }
