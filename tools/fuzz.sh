@@ -2,7 +2,8 @@
 # Builds the libFuzzer targets with clang in build-fuzz/ and runs each for a
 # bounded time (default 60 seconds each):
 #   tools/fuzz.sh [SECONDS]
-# Each fuzzer starts from its seed corpus in tests/fuzz/corpus/<target>/ and
+# Each fuzzer starts from its seed corpus in tests/fuzz/corpus/<target>/, with
+# tests/fuzz/<target>.dict as its dictionary (keys, nesting tokens, sizes), and
 # keeps what it learns in build-fuzz/corpus/<target>/ (not committed). A crash
 # is written to build-fuzz/findings/<target>/ and fails the script: copy the
 # file to tests/fuzz/regressions/<target>/ so the test suite replays it.
@@ -29,8 +30,10 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus" "$findings"
   echo "== fuzz_$target for ${seconds}s"
   log="$build/fuzz_$target.log"
+  dict=()
+  [ -f "$root/tests/fuzz/$target.dict" ] && dict=(-dict="$root/tests/fuzz/$target.dict")
   if ! "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -max_len=4096 -timeout=20 -rss_limit_mb=4096 \
-      -artifact_prefix="$findings/" -print_final_stats=1 \
+      -artifact_prefix="$findings/" -print_final_stats=1 "${dict[@]}" \
       "$corpus" "$root/tests/fuzz/corpus/$target" >"$log" 2>&1; then
     status=1
     echo "fuzz_$target FOUND A PROBLEM (inputs in $findings/); the end of $log:"

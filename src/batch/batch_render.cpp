@@ -200,6 +200,8 @@ namespace {
 // (x{frame}.png at 11 and x1{frame}.png at 1) would overwrite one another:
 // refused before anything renders. Jobs of more files than are worth listing
 // are left to the patterns' own checks.
+void check_scene_placeholders(const BatchJob& job);
+
 void check_outputs_distinct(const BatchJob& job) {
     const std::vector<int> frames = job.frames ? *job.frames : std::vector<int>{0};
     const std::size_t files = frames.size() * job.scene_paths.size() * job.outputs.size();
@@ -239,8 +241,13 @@ void check_job(const BatchJob& job) {
                 throw std::invalid_argument("with several frames every -o must contain {frame} or {frame:0N}, got '" +
                                             out + "'");
     }
-    check_outputs_distinct(job);
-    if (job.scene_paths.size() < 2) return;
+    if (job.scene_paths.size() >= 2) check_scene_placeholders(job);
+    check_outputs_distinct(job);  // after the rules above, which name the mistake more plainly
+}
+
+namespace {
+
+void check_scene_placeholders(const BatchJob& job) {
     for (const std::string& out : job.outputs) {
         if (out.find("{scene}") == std::string::npos)
             throw std::invalid_argument("with several scenes every -o must contain {scene} (the scene file's stem), "
@@ -253,6 +260,8 @@ void check_job(const BatchJob& job) {
                                         "': their outputs would overwrite each other");
     }
 }
+
+}  // namespace
 
 BatchResult run_batch(const BatchJob& job, Renderer& renderer, std::FILE* progress_out, std::FILE* errors) {
     const std::vector<WorkItem> all = work_items(job);
