@@ -324,11 +324,8 @@ TEST_CASE("[[models]] animation plays a glTF file's animation over [animation]'s
 }
 
 TEST_CASE("the Khronos sample models get a rig exactly when they have skins, morph targets or animations") {
+    if (test::skip_without_assets()) return;
     const std::filesystem::path models = test::assets_dir() / "gltf";
-    if (!std::filesystem::exists(models)) {
-        MESSAGE("skipped: no sample models at " << models.string());
-        return;
-    }
     // Static files must import without a rig (they pay nothing for posing); files that can
     // move must get one. What a file has is read with tinygltf directly, not by the importer.
     int checked = 0, rigged = 0;
