@@ -124,7 +124,7 @@ TEST_CASE("check comparison: ignored pixels count as equal and leave the pixel c
     CHECK(pixel[0] + pixel[1] + pixel[2] < 0.05f);
 }
 
-TEST_CASE("check manifest: ignore rectangles and masks in overrides; mistakes at line:column") {
+TEST_CASE("check manifest: ignore rectangles and masks in overrides, mistakes at line:column") {
     const fs::path dir = fresh_dir("manifest");
     const fs::path scenes = test::source_dir() / "tests" / "check" / "scenes";
     OIIO::ImageBuf mask = gray(96, 64, 0.0f);
@@ -162,7 +162,7 @@ TEST_CASE("check manifest: ignore rectangles and masks in overrides; mistakes at
           at + "5:15: " + (dir / "nope.png").string() + ": no such mask image");
 }
 
-TEST_CASE("check run: an ignored rectangle over a changed patch passes; a mask of another size is an error") {
+TEST_CASE("check run: an ignored rectangle over a changed patch passes, a mask of another size is an error") {
     const fs::path dir = fresh_dir("run");
     const fs::path scenes = test::source_dir() / "tests" / "check" / "scenes";
     check::Suite suite = check::suite_from_arguments({(scenes / "ball.toml").string()}, dir / "golden", {}, {});

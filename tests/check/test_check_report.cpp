@@ -66,7 +66,7 @@ void change_golden(const fs::path& golden, int x0, int y, float delta) {
 
 }  // namespace
 
-TEST_CASE("check filter: globs over scene names keep the suite's order; a glob that matches nothing is named") {
+TEST_CASE("check filter: globs over scene names keep the suite's order, a glob that matches nothing is named") {
     const check::Suite suite = three_scenes("golden");
     const auto names = [](const std::vector<check::SceneEntry>& scenes) {
         std::vector<std::string> out;
