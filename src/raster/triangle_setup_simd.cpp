@@ -191,7 +191,9 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     const Int last_x(in.width - 1), last_y(in.height - 1);
     const Mask cull_positive(in.culling == Culling::drop_positive_area);
     const Mask cull_negative(in.culling == Culling::drop_negative_area);
-    const Mask mirrored(in.mirrored);
+    // back_facing as setup_triangle(): swapped (GL's front) unless mirrored. As
+    // integers: a mask made from a bool (Mask(true)) misbehaved with AVX-512's mask registers.
+    const Int back_if_swapped(in.mirrored ? 1 : 0), back_if_kept(in.mirrored ? 0 : 1);
     // The points a pixel is tested at: its centre, or its 4 samples
     // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
     // box holds the pixels with a point between the triangle's extremes.
@@ -301,8 +303,7 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
                                inv_area, corner[0].depth, depth1, depth2,
                                refs[0], xsimd::select(swapped, refs[2], refs[1]),
                                xsimd::select(swapped, refs[1], refs[2]),
-                               // back_facing, as setup_triangle(): swapped (GL's front) unless mirrored
-                               xsimd::select(swapped ^ mirrored, zero, Int(1))};
+                               xsimd::select(swapped, back_if_swapped, back_if_kept)};
         to_records(words, kept_bits, out.records + records);
         records += std::popcount(kept_bits);
     }

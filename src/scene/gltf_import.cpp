@@ -506,12 +506,16 @@ private:
                 ++content_.skipped_primitives;
                 continue;
             }
-            // A map reading a set above 0 that the primitive lacks is refused, as the
-            // glTF validator refuses it (MESH_PRIMITIVE_TOO_FEW_TEXCOORDS). Without
-            // TEXCOORD_0 the uvs are (0, 0), as they always were: one texel everywhere.
+            // A map reading a set that a primitive with texture coordinates lacks is
+            // refused, as the glTF validator refuses it (MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
+            // A primitive with none reads (0, 0), as it always did: one texel everywhere.
             const bool has_maps = mesh.primitives[p].material >= 0 && uv_mapping_has_maps(mesh.primitives[p].material);
+            const auto& attributes = mesh.primitives[p].attributes;
+            const bool any_texcoords = std::any_of(attributes.begin(), attributes.end(), [](const auto& a) {
+                return a.first.rfind("TEXCOORD_", 0) == 0;
+            });
             const auto require_set = [&](int set, bool present) {
-                if (!present && set > 0)
+                if (!present && any_texcoords)
                     fail(label + ": material " + std::to_string(mesh.primitives[p].material) + " has a map with texCoord " +
                          std::to_string(set) + " but the primitive has no TEXCOORD_" + std::to_string(set));
             };

@@ -52,7 +52,7 @@
 //   by its KHR_texture_transform (offset, rotation, scale, texCoord): baked into
 //   the uvs when all of a material's maps agree, else per map when sampling
 //   (a second set in Mesh::uvs1; gltf_materials.hpp: MaterialUvs). A map on a set
-//   above 0 that the primitive lacks is refused; without TEXCOORD_0 the uvs are 0.
+//   the primitive lacks is refused; a primitive with no TEXCOORD_n reads uv 0.
 //   Samplers: wrapS and wrapT (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT), magFilter
 //   and minFilter as GL defines them (default LINEAR, LINEAR_MIPMAP_LINEAR); other
 //   values are refused. glTF's UV origin (top-left) is Texture's: no flip.

@@ -243,7 +243,7 @@ inline std::vector<BadGltf> bad_gltf_files() {
          {"@: invalid glTF: ", "File not found : missing_buffer.bin", "(looked in '"}},
         {"gltf_missing_texture", ".gltf",
          replaced(good, "data:image/png;base64," + std::string(kTestPngBase64), "missing_texture.png"),
-         {"@: images[0]: cannot read image file '", "missing_texture.png'"}},
+         {"@: images[0] ('missing_texture.png'): cannot read image file '", "missing_texture.png'"}},
         {"gltf_corrupt_texture", ".gltf", replaced(good, "iVBORw0KGgo", "iVBORw0KGgX"),
          {"@: images[0]: cannot decode image: "}},
         {"gltf_accessor_out_of_range", ".gltf", replaced(good, "\"count\": 6", "\"count\": 600000"),

@@ -118,16 +118,21 @@ std::string with_base_color_texture(const std::string& base_color) {
     return test::replaced(text, R"("baseColorTexture": {"index": 0})", R"("baseColorTexture": )" + base_color);
 }
 
-const std::string kMixedMapsWarning =
-    "materials[0] 'painted': its maps use different texture coordinates or transforms; all use the first map's";
 
 }  // namespace
 
-TEST_CASE("glTF KHR_texture_transform and TEXCOORD_1: the base colour map's mapping is baked into the uvs") {
+TEST_CASE("glTF KHR_texture_transform and TEXCOORD_1: each map's own mapping") {
     SUBCASE("offset, rotation and scale, as the extension's GLSL: uv' = T·R·S·uv") {
         const GltfContent content = import_text(with_base_color_texture(
             R"({"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 1.5707963268, "scale": [2, 3]}}})"));
-        const std::vector<glm::vec2>& uvs = content.meshes[0].uvs;  // TEXCOORD_0 was (0,0) (1,0) (0,1)
+        // The other maps have no transform: the uvs stay TEXCOORD_0, (0,0) (1,0) (0,1), and the
+        // base colour's slot transforms them when sampling.
+        CHECK(content.meshes[0].uvs == std::vector<glm::vec2>{{0, 0}, {1, 0}, {0, 1}});
+        const TextureSlot& base = content.materials[0].albedo_map;
+        REQUIRE(base.uv_transformed);
+        CHECK_FALSE(content.materials[0].emissive_map.uv_transformed);
+        std::vector<glm::vec2> uvs;
+        for (const glm::vec2& uv : content.meshes[0].uvs) uvs.push_back(glm::vec2(base.uv_transform * glm::vec3(uv, 1.0f)));
         REQUIRE(uvs.size() == 3);
         CHECK(uvs[0].x == doctest::Approx(0.5f));
         CHECK(uvs[0].y == doctest::Approx(0.0f));
@@ -136,9 +141,7 @@ TEST_CASE("glTF KHR_texture_transform and TEXCOORD_1: the base colour map's mapp
         CHECK(uvs[1].y == doctest::Approx(-2.0f));
         CHECK(uvs[2].x == doctest::Approx(3.5f));
         CHECK(uvs[2].y == doctest::Approx(0.0f).epsilon(1e-5));
-        // The other maps have no transform: they follow the base colour's, said once.
-        REQUIRE(content.warnings.size() == 1);
-        CHECK(content.warnings[0] == kMixedMapsWarning);
+        CHECK(content.warnings.empty());  // maps that disagree are no longer forced to agree
     }
     SUBCASE("texCoord 1 reads TEXCOORD_1; the extension's texCoord overrides the textureInfo's") {
         const GltfContent second = import_text(with_base_color_texture(R"({"index": 0, "texCoord": 1})"));

@@ -81,8 +81,11 @@ TEST_CASE("glTF texCoord: maps that agree are baked into the uvs; maps on two se
         const GltfContent o = import_text(test::quad_gltf(
             R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1}}}}, "emissiveTexture": {"index": 1}, "emissiveFactor": [1, 1, 1]})",
             kTwoTextures, test::png_image(), R"({})", R"("KHR_texture_transform")"));
-        CHECK(o.materials[0].albedo_map.uv_set == 1);
-        CHECK(o.meshes[0].uvs1 == uvs_of(test::kQuadUv1));
+        // The base colour is the first map: its set (TEXCOORD_1) is Mesh::uvs, the emissive's the second.
+        CHECK(o.materials[0].albedo_map.uv_set == 0);
+        CHECK(o.materials[0].emissive_map.uv_set == 1);
+        CHECK(o.meshes[0].uvs == uvs_of(test::kQuadUv1));
+        CHECK(o.meshes[0].uvs1 == uvs_of(test::kQuadUv0));
     }
     SUBCASE("a texCoord naming a set the primitive does not have: one clear error") {
         const std::string message = error_of(test::quad_gltf(
@@ -205,12 +208,16 @@ TEST_CASE("glTF KHR_texture_basisu: a texture with only a KTX2 image is refused,
 TEST_CASE("glTF base colour alpha is straight: a PNG's colour is not darkened by its alpha") {
     const std::filesystem::path path = test::output_dir("gltf_materials") / "straight_alpha.png";
     const float pixels[] = {1.0f, 0.5f, 0.25f, 0.1f};
-    OIIO::ImageBuf buffer(OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::FLOAT), const_cast<float*>(pixels));
+    OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // the values are straight: written as they are
+    OIIO::ImageBuf buffer(spec, const_cast<float*>(pixels));
     REQUIRE(buffer.write(path.string(), OIIO::TypeDesc::UINT8));
     std::ifstream file(path, std::ios::binary);
     const std::vector<std::uint8_t> png((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     const GltfContent c = import_text(test::quad_gltf(R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})",
                                                       R"({"source": 0})", test::data_image(png, "image/png")));
     REQUIRE(c.textures.size() == 1);
-    CHECK(c.textures[0]->texel_bytes(0, 0, 0) == std::array<std::uint8_t, 4>{255, 128, 64, 26});
+    const auto texel = c.textures[0]->texel_bytes(0, 0, 0);
+    INFO(int(texel[0]) << " " << int(texel[1]) << " " << int(texel[2]) << " " << int(texel[3]));
+    CHECK(texel == std::array<std::uint8_t, 4>{255, 128, 64, 26});
 }
