@@ -183,6 +183,21 @@ run_command() {
   return 0
 }
 
+# Building and testing write nothing into the clone (generated files go to the build folder):
+# its git status, ignored files included, shows only build/ and the quick start's spheres.png.
+check_source_tree() {
+  local root="$1" order="$2" left
+  left="$(chroot "$root" git -C /work/tessera status --porcelain --ignored=matching --untracked-files=all |
+    grep -vE '^!! (build/|spheres\.png$)' || true)"
+  if [ -n "$left" ]; then
+    failed=1
+    results+=("$(printf '%-22s %s' "[$order]" "the source tree changed: $(echo "$left" | head -5 | tr '\n' ' ')")")
+    echo "   the build changed the source tree:"; echo "$left" | sed 's/^/   | /'
+  else
+    results+=("$(printf '%-22s %s' "[$order]" "git status of the source tree: clean but build/ and spheres.png")")
+  fi
+}
+
 # The two orders, each in its own new root: command 1 first (a new user), and command 2
 # first (a developer who goes straight to the tests).
 for order in render-first tests-first; do
@@ -192,6 +207,7 @@ for order in render-first tests-first; do
   if [ "$order" = render-first ]; then first="$quickstart"; second="$tests"; else first="$tests"; second="$quickstart"; fi
   run_command "$root" "$order" "$first"
   run_command "$root" "$order" "$second"
+  check_source_tree "$root" "$order"
   unmount_root "$root"
 done
 

@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 #include <vector>
 
 #include <sys/resource.h>
 
 #include "cli/frame_options.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/usage.hpp"
 #include "profile/frame_profile_output.hpp"
+#include "scene/scene_validation.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/scene.hpp"
 
@@ -37,6 +42,15 @@ Summary summarize(std::vector<double> values) {
 }  // namespace
 
 int run_bench(const BenchCommand& cmd) {
+    // Refused now, not after the timed frames.
+    try {
+        std::error_code ignored;
+        if (!std::filesystem::is_directory(cmd.scene_path, ignored)) check_scene_file_extension(cmd.scene_path);
+    } catch (const SceneError& e) {
+        throw UsageError(e.what());
+    }
+    if (!cmd.trace_path.empty()) check_writable_file(cmd.trace_path, "the --trace file");
+    if (!cmd.heatmap_path.empty()) check_writable_file(cmd.heatmap_path, "the --heatmap image");
     Scene scene = load_scene_file(cmd.scene_path);
     apply_lighting_options(cmd.lighting, cmd.scene_path, scene);
     if (cmd.width > 0) scene.width = cmd.width;

@@ -13,6 +13,8 @@
 #include "check/merge.hpp"
 #include "check/report.hpp"
 #include "check/runner.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/usage.hpp"
 
 namespace tessera::cli {
 
@@ -167,11 +169,11 @@ CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd) {
     threshold("--max-warn-ratio", "max_warn_ratio", "Fraction beyond --warn that fails the scene");
     check->add_flag("--perceptual", cmd.defaults.perceptual, "Also apply Yee's perceptual test");
 
-    check->add_option("--width", cmd.defaults.width, "Override every scene's image width")
+    no_default_shown(check->add_option("--width", cmd.defaults.width, "Override every scene's image width"))
         ->check(CLI::Range(1, kMaxImageDimension));
-    check->add_option("--height", cmd.defaults.height, "Override every scene's image height")
+    no_default_shown(check->add_option("--height", cmd.defaults.height, "Override every scene's image height"))
         ->check(CLI::Range(1, kMaxImageDimension));
-    check->add_option("--msaa", cmd.defaults.msaa, "Override every scene's samples per pixel, 1 or 4")
+    no_default_shown(check->add_option("--msaa", cmd.defaults.msaa, "Override every scene's samples per pixel, 1 or 4"))
         ->check(CLI::IsMember({1, 4}));
     check->add_option("--threads", cmd.settings.threads, "Worker threads (0 = one per hardware thread)")
         ->check(CLI::Range(0, 1024));
@@ -244,6 +246,15 @@ int run_check(CheckCommand& cmd) {
     // Shards of one array must not write one report: without --report each takes a folder of its own.
     if (cmd.report_dir.empty() && shard.shard.count > 1)
         options.report_dir /= "shard_" + std::to_string(shard.shard.index + 1);
+    // The report's files are written after every scene has rendered: refuse an unwritable place now.
+    try {
+        check_writable_folder(options.report_dir.string(), "the report");
+        if (!cmd.junit_path.empty()) check_writable_file(cmd.junit_path, "the --junit file");
+        if (!cmd.json_path.empty()) check_writable_file(cmd.json_path, "the --json file");
+    } catch (const UsageError& e) {
+        print_error(e.what());
+        return kCheckUsageError;
+    }
     options.settings = cmd.settings;
     options.update = update_mode;
     options.update_names = update_names;

@@ -43,7 +43,7 @@ CLI::App* add_check_command(CLI::App& app, CheckCommand& cmd);
 // that are unreadable or do not make one run).
 int run_check(CheckCommand& cmd);
 
-// CLI11's exit code for a parse error of `tessera check` is 2 (bad usage), as the contract says.
+// Bad usage of `tessera check`: 2, as for every command (usage.hpp).
 inline constexpr int kCheckUsageError = 2;
 
 }  // namespace tessera::cli

@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "batch/contact_sheet.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/usage.hpp"
 #include "batch/frames.hpp"
 #include "tessera/image_io.hpp"
 
@@ -30,17 +32,19 @@ int run_contact_sheet(const ContactSheetCommand& cmd) {
         files = cmd.inputs;
     } else {
         if (cmd.inputs.size() != 1)
-            throw std::invalid_argument("with --frames give one pattern (as render's -o), not " +
+            throw UsageError("with --frames give one pattern (as render's -o), not " +
                                         std::to_string(cmd.inputs.size()) + " inputs");
         const std::string& pattern = cmd.inputs.front();
         batch::check_output_pattern(pattern);
         if (pattern.find("{scene}") != std::string::npos && cmd.scene.empty())
-            throw std::invalid_argument("the pattern holds {scene}: give --scene STEM");
+            throw UsageError("the pattern holds {scene}: give --scene STEM");
         for (const int frame : batch::parse_frame_ranges(cmd.frames))
             files.push_back(batch::expand_output_pattern(pattern, cmd.scene, frame));
     }
     if (std::filesystem::path(cmd.output).extension() != ".png")
-        throw ImageError(cmd.output + ": a contact sheet is written as .png (display-referred, as the frames)");
+        throw UsageError(cmd.output + ": a contact sheet is written as .png (display-referred, as the frames)");
+    create_parent_folders(cmd.output, "the contact sheet");
+    check_writable_file(cmd.output, "the contact sheet");
     batch::ContactSheetLayout layout;
     layout.columns = cmd.columns;
     layout.tile_width = cmd.tile_width;

@@ -4,16 +4,18 @@
 
 #include "environment/environment_cache.hpp"
 #include "scene/gltf_import.hpp"
+#include "cli/usage.hpp"
 #include "tessera/scene.hpp"
 
 namespace tessera::cli {
 
 void add_frame_options(CLI::App* command, int& width, int& height, int& msaa, RenderSettings& settings) {
-    command->add_option("--msaa", msaa, "Samples per pixel, 1 or 4 (overrides the scene's output.msaa)")
+    // 0 (the scene's own) is no value a user can give: no "=0" in --help.
+    no_default_shown(command->add_option("--msaa", msaa, "Samples per pixel, 1 or 4 (default: the scene's output.msaa)"))
         ->check(CLI::IsMember({1, 4}));
-    command->add_option("--width", width, "Override the scene's image width in pixels")
+    no_default_shown(command->add_option("--width", width, "Image width in pixels (default: the scene's output.width)"))
         ->check(CLI::Range(1, tessera::kMaxImageDimension));
-    command->add_option("--height", height, "Override the scene's image height in pixels")
+    no_default_shown(command->add_option("--height", height, "Image height in pixels (default: the scene's output.height)"))
         ->check(CLI::Range(1, tessera::kMaxImageDimension));
     command->add_option("--threads", settings.threads, "Worker threads (0 = one per hardware thread)")
         ->check(CLI::Range(0, 1024));

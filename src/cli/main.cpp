@@ -8,6 +8,7 @@
 #include <exception>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -22,6 +23,9 @@
 #include "batch/shard.hpp"
 #include "cli/frame_options.hpp"
 #include "cli/load_stats.hpp"
+#include "cli/cli_docs.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/usage.hpp"
 #include "cli/tools_exec.hpp"
 #include "io/memory_budget.hpp"
 #include "scene/gltf_import.hpp"
@@ -126,17 +130,63 @@ tessera::Scene load_for_render(const RenderCommand& cmd, const std::string& scen
     return scene;
 }
 
+// Every folder -o names (with {scene} and {frame} expanded), created where
+// missing, and checked to take new files: before the first frame renders.
+void prepare_output_folders(const tessera::batch::BatchJob& job) {
+    std::set<std::string> folders;
+    const std::vector<int> frames = job.frames ? *job.frames : std::vector<int>{0};
+    for (const std::string& pattern : job.outputs)
+        for (const std::string& scene : job.scene_paths)
+            for (const int frame : frames) {
+                const std::string path = tessera::batch::expand_output_pattern(
+                    pattern, std::filesystem::path(scene).stem().string(), frame);
+                const std::string folder = std::filesystem::path(path).parent_path().string();
+                if (folders.insert(folder).second) {  // each folder made and tried once
+                    tessera::cli::create_parent_folders(path, "the output image");
+                    tessera::cli::check_writable_file(path, "the output image");
+                } else {
+                    tessera::cli::check_not_folder(path, "the output image");
+                }
+            }
+}
+
+// The job as the command line describes it; anything wrong with it is a usage
+// error (exit 2), found before any scene is loaded.
+tessera::batch::BatchJob make_job(const RenderCommand& cmd) {
+    using tessera::cli::UsageError;
+    if (cmd.time && cmd.frames)
+        throw UsageError("--time renders one moment and --frames a range of them; give one of the two");
+    for (const std::string& scene : cmd.scene_paths) {
+        std::error_code ignored;
+        if (std::filesystem::is_directory(scene, ignored)) continue;  // "cannot open scene file", as the loader says
+        try {
+            tessera::check_scene_file_extension(scene);
+        } catch (const tessera::SceneError& e) {
+            throw UsageError(e.what());
+        }
+    }
+    tessera::batch::BatchJob job;
+    job.scene_paths = cmd.scene_paths;
+    job.outputs = cmd.outputs;
+    try {
+        if (cmd.frames) job.frames = tessera::batch::parse_frame_ranges(*cmd.frames);
+        job.shard = tessera::batch::choose_shard(cmd.shard, cmd.shard_count, tessera::batch::process_environment());
+        tessera::batch::check_job(job);
+    } catch (const std::exception& e) {  // a bad --frames, --shard or -o
+        throw UsageError(e.what());
+    }
+    if (!cmd.aov_lists.empty() && std::none_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path))
+        throw UsageError("--aov needs an .exr output: PNG holds only the display image");
+    prepare_output_folders(job);
+    if (!cmd.log_path.empty()) tessera::cli::check_writable_file(cmd.log_path, "the --log file", true);
+    return job;
+}
+
 // One failing scene does not stop the others; the exit status says whether any failed.
 int run_render(const RenderCommand& cmd) {
     if (!cmd.max_memory.empty()) tessera::io::set_memory_budget(tessera::io::parse_byte_size(cmd.max_memory));
     tessera::set_external_uris_allowed(cmd.allow_external_uris);
-    if (cmd.time && cmd.frames)
-        throw std::invalid_argument("--time renders one moment and --frames a range of them; give one of the two");
-    tessera::batch::BatchJob job;
-    job.scene_paths = cmd.scene_paths;
-    job.outputs = cmd.outputs;
-    if (cmd.frames) job.frames = tessera::batch::parse_frame_ranges(*cmd.frames);
-    job.shard = tessera::batch::choose_shard(cmd.shard, cmd.shard_count, tessera::batch::process_environment());
+    tessera::batch::BatchJob job = make_job(cmd);
     job.skip_existing = cmd.skip_existing;
     job.log_path = cmd.log_path;
     job.write_behind = !cmd.serial_writes;
@@ -146,16 +196,18 @@ int run_render(const RenderCommand& cmd) {
     tessera::ModelCache models;  // a model several scenes place is loaded once
     job.load_scene = [&cmd, &models](const std::string& path) { return load_for_render(cmd, path, models); };
     if (cmd.stats) job.after_frame = print_stats, job.after_write = tessera::cli::print_write_stats;
-    tessera::batch::check_job(job);
-    if (!cmd.aov_lists.empty() && std::none_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path))
-        throw std::invalid_argument("--aov needs an .exr output: PNG holds only the display image");
 
     tessera::RenderSettings settings = cmd.settings;
     // The HDR radiance image costs memory bandwidth: keep it only for EXR output.
     settings.keep_radiance = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), is_exr_path);
-    for (const std::string& list : cmd.aov_lists) tessera::parse_aov_list(list, settings.aovs);
-    tessera::Renderer renderer(settings);  // one renderer: its frame memory is reused from frame to frame
-    const tessera::batch::BatchResult result = tessera::batch::run_batch(job, renderer, stdout, stderr);
+    std::optional<tessera::Renderer> renderer;  // one renderer: its frame memory is reused from frame to frame
+    try {
+        for (const std::string& list : cmd.aov_lists) tessera::parse_aov_list(list, settings.aovs);
+        renderer.emplace(settings);
+    } catch (const std::invalid_argument& e) {  // an unknown --aov, --isa or a bad --tile-size
+        throw tessera::cli::UsageError(e.what());
+    }
+    const tessera::batch::BatchResult result = tessera::batch::run_batch(job, *renderer, stdout, stderr);
     const std::vector<std::string>& failed = result.failed_scenes;
     if (job.skip_existing && result.frames_skipped > 0)
         std::printf("skipped %d frames already written; rendered %d\n", result.frames_skipped, result.frames_rendered);
@@ -208,15 +260,18 @@ int main(int argc, char** argv) {
     CLI::App app{"Tessera: a multithreaded SIMD CPU rasterizer with a PBR fragment stage", "tessera"};
     app.set_version_flag("--version", "tessera " TESSERA_VERSION);
     app.require_subcommand(1);
+    app.option_defaults()->always_capture_default();  // every --help shows the defaults
 
     RenderCommand render;
     CLI::App* render_app = app.add_subcommand("render", "Render scene files to one or more images each");
-    render_app->add_option("scene", render.scene_paths, "Scene files (TOML); one failing does not stop the others")
+    render_app->add_option("scene", render.scene_paths,
+                           "Scene files: .toml scenes, or .gltf/.glb models rendered on their own (their camera "
+                           "and lights); one failing does not stop the others")
         ->required();
     render_app->add_option("-o,--output", render.outputs,
                            "Output image; .png is display-referred 8-bit, .exr is scene-linear HDR (repeatable: one "
                            "render, several files); {scene} stands for the scene file's stem and is required "
-                           "with several scenes")
+                           "with several scenes; missing folders are created")
         ->required();
     render_app->add_option("--aov", render.aov_lists,
                            "Add surface data to every .exr output, a comma-separated list of depth, normal, albedo, "
@@ -243,17 +298,24 @@ int main(int argc, char** argv) {
     for (const tessera::cli::ToolCommand& tool : tessera::cli::tool_commands())
         app.add_subcommand(tool.name, tool.description)->allow_extras()->prefix_command();
 
+    tessera::cli::hide_empty_defaults(app);
+    // Hidden: the bash completion and the man page, made from this definition at build time (cli_docs.hpp).
+    if (argc > 1 && tessera::cli::is_docs_request(argv[1])) return tessera::cli::print_docs(app, argc, argv);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return tessera::cli::report_parse_error(app, e, argc, argv);
     }
     try {
         if (*render_app) return run_render(render);
         for (const tessera::cli::ToolCommand& tool : tessera::cli::tool_commands())
             if (*app.get_subcommand(tool.name)) return tessera::cli::exec_tools(argc, argv);
+    } catch (const tessera::cli::UsageError& e) {
+        tessera::cli::print_error(e.what());
+        return tessera::cli::kUsageExit;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", tessera::io::error_sentence(e).c_str());
+        tessera::cli::print_error(tessera::io::error_sentence(e));
         return 1;
     }
     return 1;

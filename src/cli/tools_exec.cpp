@@ -26,11 +26,10 @@ bool is_tool_command(std::string_view argument) {
     return false;
 }
 
-int exec_tools(int argc, char** argv) {
-    (void)argc;
+std::filesystem::path tools_executable(const char* argv0) {
     std::error_code error;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
-    const std::filesystem::path dir = error ? std::filesystem::path(argv[0]).parent_path() : self.parent_path();
+    const std::filesystem::path dir = error ? std::filesystem::path(argv0).parent_path() : self.parent_path();
     // Beside this executable in the build tree; in an installed tree bin/tessera finds it in
     // lib/tessera/ (TESSERA_HELPERS_FROM_BIN, relative, so the tree may be moved).
     std::filesystem::path tools = dir / "tessera-tools";
@@ -39,6 +38,11 @@ int exec_tools(int argc, char** argv) {
         !std::filesystem::exists(tools, error) && std::filesystem::exists(installed, error))
         tools = installed.lexically_normal();
 #endif
+    return tools;
+}
+
+int exec_tools(int argc, char** argv) {
+    const std::filesystem::path tools = tools_executable(argv[0]);
     ::execv(tools.c_str(), argv);  // argv[0] stays: messages and usage still say "tessera"
     std::fprintf(stderr, "tessera: error: '%s' is part of tessera-tools, which cannot run from '%s': %s\n",
                  argc > 1 ? argv[1] : "", tools.c_str(), std::strerror(errno));

@@ -5,6 +5,7 @@
 // stays free of it; `tessera check ...` execs `tessera-tools check ...`.
 #pragma once
 
+#include <filesystem>
 #include <string_view>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct ToolCommand {
 };
 const std::vector<ToolCommand>& tool_commands();
 bool is_tool_command(std::string_view argument);
+
+// tessera-tools beside this executable.
+std::filesystem::path tools_executable(const char* argv0);
 
 // Replaces this process with tessera-tools (beside this executable), same
 // arguments. Returns only on failure: prints why and returns exit status 1.

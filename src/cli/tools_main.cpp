@@ -9,19 +9,23 @@
 
 #include "cli/bench_command.hpp"
 #include "cli/check_command.hpp"
+#include "cli/cli_docs.hpp"
 #include "cli/contact_sheet_command.hpp"
 #include "cli/frame_options.hpp"
 #include "io/memory_budget.hpp"
 #include "scene/gltf_import.hpp"
+#include "cli/usage.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{"Tessera: a multithreaded SIMD CPU rasterizer with a PBR fragment stage", "tessera"};
     app.set_version_flag("--version", "tessera " TESSERA_VERSION);
     app.require_subcommand(1);
+    app.option_defaults()->always_capture_default();  // every --help shows the defaults
 
     tessera::cli::BenchCommand bench;
     CLI::App* bench_app = app.add_subcommand("bench", "Render a scene many times and report time per stage");
-    bench_app->add_option("scene", bench.scene_path, "Scene file (TOML)")->required();
+    bench_app->add_option("scene", bench.scene_path, "Scene file: a .toml scene, or a .gltf/.glb model on its own")
+        ->required();
     bench_app->add_option("--frames", bench.frames, "Frames to time")->check(CLI::Range(1, 100000));
     bench_app->add_option("--warmup", bench.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
     tessera::cli::add_frame_options(bench_app, bench.width, bench.height, bench.msaa, bench.settings);
@@ -58,11 +62,16 @@ int main(int argc, char** argv) {
                               "Let glTF URIs name files outside the model's folder (refused by default)");
     }
 
+    tessera::cli::hide_empty_defaults(app);
+    // For tessera --print-completion / --print-man (cli_docs.hpp): these commands' definitions.
+    if (argc == 2 && argv[1] == tessera::cli::kSpecRequest) {
+        std::fputs(tessera::cli::to_spec(tessera::cli::describe_commands(app)).c_str(), stdout);
+        return 0;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int status = app.exit(e);
-        return status != 0 && *check_app ? tessera::cli::kCheckUsageError : status;
+        return tessera::cli::report_parse_error(app, e, argc, argv);
     }
     try {
         if (!max_memory.empty()) tessera::io::set_memory_budget(tessera::io::parse_byte_size(max_memory));
@@ -70,8 +79,11 @@ int main(int argc, char** argv) {
         if (*bench_app) return tessera::cli::run_bench(bench);
         if (*contact_sheet_app) return tessera::cli::run_contact_sheet(contact_sheet);
         if (*check_app) return tessera::cli::run_check(check);
+    } catch (const tessera::cli::UsageError& e) {
+        tessera::cli::print_error(e.what());
+        return tessera::cli::kUsageExit;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", tessera::io::error_sentence(e).c_str());
+        tessera::cli::print_error(tessera::io::error_sentence(e));
         return 1;
     }
     return 1;

@@ -56,17 +56,20 @@ Mesh make_sphere_mesh() {
 
 namespace {
 
-// Appends the square face centre ± u ± v with normal n = u × v, as two
-// triangles counter-clockwise seen from the side n points to. uv runs along
-// u and v over [0,1]².
-void add_quad(Mesh& mesh, glm::vec3 centre, glm::vec3 u, glm::vec3 v) {
-    const glm::vec3 normal = glm::cross(u, v);
+// Appends the square face centre ± right ± up with normal n = right × up, as
+// two triangles counter-clockwise seen from the side n points to. Texture
+// coordinates follow glTF's convention (uv (0, 0) is the image's top-left
+// texel as the file stores it, v grows downwards): u runs along `right` and
+// v against `up`, so an image reads upright, not mirrored, seen from outside
+// with `up` pointing up the screen.
+void add_quad(Mesh& mesh, glm::vec3 centre, glm::vec3 right, glm::vec3 up) {
+    const glm::vec3 normal = glm::cross(right, up);
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
     constexpr std::array<glm::vec2, 4> kCorners{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}};
     for (const glm::vec2 corner : kCorners) {
-        mesh.positions.push_back(centre + corner.x * u + corner.y * v);
+        mesh.positions.push_back(centre + corner.x * right + corner.y * up);
         mesh.normals.push_back(normal);
-        mesh.uvs.push_back((corner + 1.0f) * 0.5f);
+        mesh.uvs.emplace_back((corner.x + 1.0f) * 0.5f, (1.0f - corner.y) * 0.5f);
     }
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
 }
@@ -76,7 +79,9 @@ void add_quad(Mesh& mesh, glm::vec3 centre, glm::vec3 u, glm::vec3 v) {
 Mesh make_plane_mesh() {
     Mesh mesh;
     mesh.name = "plane";
-    // u = +X, v = -Z gives normal +Y, and the same uv layout as the cube's top.
+    // Seen from above with -Z up the screen (a camera in front, looking down):
+    // the image's top edge lies along -Z, its left edge along -X. Normal +Y;
+    // the same layout as the cube's top face.
     add_quad(mesh, {0, 0, 0}, {1, 0, 0}, {0, 0, -1});
     return mesh;
 }
@@ -84,7 +89,10 @@ Mesh make_plane_mesh() {
 Mesh make_cube_mesh() {
     Mesh mesh;
     mesh.name = "cube";
-    // One quad per face; each (u, v) pair is chosen so that u × v points outwards.
+    // One quad per face, (right, up) as seen from outside, right × up pointing
+    // outwards. The four sides are upright (+Y up); the top reads upright
+    // with its top edge at the back (-Z), the bottom with its top edge at the
+    // front (+Z), as in the usual cross-shaped unfolding around the front face.
     add_quad(mesh, {1, 0, 0}, {0, 0, -1}, {0, 1, 0});   // +X
     add_quad(mesh, {-1, 0, 0}, {0, 0, 1}, {0, 1, 0});   // -X
     add_quad(mesh, {0, 1, 0}, {1, 0, 0}, {0, 0, -1});   // +Y

@@ -10,7 +10,7 @@
 // ModelCache&), model_cache.hpp); its placements share its textures. An object's model
 // matrix is translate · Rz · Ry · Rx · scale. Integers are
 // accepted wherever a number is expected; NaN and infinities are rejected.
-// Each built-in mesh is created once and shared by all objects that use it;
+// Each built-in mesh is created once and shared by all objects that use it (per uv_scale);
 // Scene::meshes and Scene::materials hold only what objects use, in order of
 // first use (each inline material is its own entry).
 //
@@ -22,6 +22,7 @@
 // "file: message" where no position applies. Values are named by their path
 // in the document, e.g. 'objects[3].material.metallic'.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -47,6 +48,7 @@
 #include "scene/gltf_animation.hpp"
 #include "scene/gltf_import.hpp"
 #include "scene/model_cache.hpp"
+#include "scene/scene_validation.hpp"
 #include "scene/toml_reader.hpp"
 #include "tessera/scene.hpp"
 #include "texture/texture.hpp"
@@ -444,9 +446,25 @@ private:
         return index;
     }
 
-    std::uint32_t mesh_index(const toml::node& node, const std::string& name, Scene& scene) {
+    // uv_scale: a number or [u, v], each > 0 (and finite): the texture repeats that often across the mesh.
+    glm::vec2 read_uv_scale(const toml::node& node, const std::string& name) const {
+        constexpr ValueRange kPositive{std::numeric_limits<float>::min(), std::numeric_limits<double>::max(), "> 0"};
+        if (node.is_number()) return glm::vec2(read_float(node, name, kPositive));
+        const toml::array* array = node.as_array();
+        if (array == nullptr) fail_type(node, "a number or an array [u, v] of 2 numbers", name);
+        if (array->size() != 2)
+            fail_at(node.source(), "expected an array [u, v] of 2 numbers for '" + name + "', got " +
+                                       std::to_string(array->size()) + " elements");
+        return {read_float(*array->get(0), name + "[0]", kPositive), read_float(*array->get(1), name + "[1]", kPositive)};
+    }
+
+    // Objects that tile their texture differently get their own copy of the mesh.
+    std::uint32_t mesh_index(const toml::node& node, const std::string& name, glm::vec2 uv_scale, Scene& scene) {
         const std::string mesh_name = read_string(node, name);
-        if (const auto used = used_meshes_.find(mesh_name); used != used_meshes_.end()) {
+        const std::string key = uv_scale == glm::vec2(1.0f)
+                                    ? mesh_name
+                                    : mesh_name + " (uv_scale " + to_text(uv_scale.x) + " " + to_text(uv_scale.y) + ")";
+        if (const auto used = used_meshes_.find(key); used != used_meshes_.end()) {
             return used->second;
         }
         Mesh mesh;
@@ -460,9 +478,13 @@ private:
             fail_at(node.source(), "unknown mesh '" + mesh_name + "' for '" + name +
                                        "'; built-in meshes: " + std::string(kSupportedMeshes));
         }
+        if (key != mesh_name) {
+            mesh.name = key;
+            for (glm::vec2& uv : mesh.uvs) uv *= uv_scale;
+        }
         scene.meshes.push_back(std::move(mesh));
         const auto index = static_cast<std::uint32_t>(scene.meshes.size() - 1);
-        used_meshes_.emplace(mesh_name, index);
+        used_meshes_.emplace(key, index);
         return index;
     }
 
@@ -471,9 +493,11 @@ private:
         for (std::size_t i = 0; i < objects.size(); ++i) {
             const std::string name = "objects[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*objects.get(i), name);
-            check_keys(table, name, {"mesh", "material", "translate", "rotate", "scale"});
+            check_keys(table, name, {"mesh", "material", "translate", "rotate", "scale", "uv_scale"});
             Object object;
-            object.mesh = mesh_index(require(table, "mesh", name), child(name, "mesh"), scene);
+            glm::vec2 uv_scale{1.0f};
+            if (const toml::node* n = table.get("uv_scale")) uv_scale = read_uv_scale(*n, child(name, "uv_scale"));
+            object.mesh = mesh_index(require(table, "mesh", name), child(name, "mesh"), uv_scale, scene);
             object.material = material_index(table.get("material"), child(name, "material"), scene);
 
             object.model = read_placement(table, name);
@@ -583,7 +607,7 @@ private:
     std::filesystem::path base_dir_;  // the scene file's folder: [[models]] files are relative to it
     std::map<std::string, Material> named_materials_;
     std::map<std::string, std::uint32_t> used_materials_;  // name -> index in Scene::materials
-    std::map<std::string, std::uint32_t> used_meshes_;     // name -> index in Scene::meshes
+    std::map<std::string, std::uint32_t> used_meshes_;     // name and uv_scale -> index in Scene::meshes
     std::optional<std::uint32_t> default_material_;
     std::vector<std::shared_ptr<const texture::Texture>> textures_;  // becomes Scene::textures
     std::map<std::string, std::int32_t> texture_indices_;            // path and colour space -> index in textures_
@@ -625,6 +649,8 @@ Scene parse_scene_with(std::string_view toml_text, std::string_view source_name,
 // --camera NAME|INDEX) picks a glTF file's camera; a TOML file refuses it.
 Scene load_scene_with(const std::filesystem::path& path, ModelCache* models, const std::string& gltf_camera) {
     const std::string name = path.string();
+    std::error_code ignored;
+    if (!std::filesystem::is_directory(path, ignored)) check_scene_file_extension(path);
     if (is_gltf_path(path))
         return make_gltf_scene(models ? *models->load(path) : import_gltf_file(path), name, gltf_camera);
     if (!gltf_camera.empty())
@@ -639,6 +665,14 @@ Scene load_scene_with(const std::filesystem::path& path, ModelCache* models, con
 }
 
 }  // namespace
+
+void check_scene_file_extension(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".toml" && !is_gltf_path(path))
+        throw SceneError(path.string() + ": not a scene file (expected .toml, .gltf or .glb)");
+}
 
 Scene parse_scene(std::string_view toml_text, std::string_view source_name) {
     return parse_scene_with(toml_text, source_name, nullptr);

@@ -5,6 +5,8 @@
 // CLI's size overrides.
 #pragma once
 
+#include <filesystem>
+
 #include "tessera/scene.hpp"
 
 namespace tessera {
@@ -22,5 +24,12 @@ namespace tessera {
 // Non-finite vertex positions or normals are not errors: the renderer drops
 // such triangles, as a GPU would, rather than refusing the frame.
 void validate_scene(const Scene& scene);
+
+// A scene file's kind comes from its extension (any case): .toml is a scene
+// file, .gltf and .glb a model rendered on its own. Anything else (.obj, .ply,
+// .png, none) throws SceneError "PATH: not a scene file (expected .toml, .gltf
+// or .glb)" before the file is read: load_scene_file calls it, and the CLI
+// calls it for every scene before starting work.
+void check_scene_file_extension(const std::filesystem::path& path);
 
 }  // namespace tessera

@@ -183,7 +183,7 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
     }
     SUBCASE("an unsupported output format") {
         const Run run = tessera_render(dir, {scene.string(), "-o", (dir / "out.jpg").string()});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);  // a usage error: refused before any work
         CHECK(contains(run.err, "out.jpg: unsupported output format"));
     }
     SUBCASE("--width and --height at the limit per side but too many pixels together") {
@@ -203,10 +203,10 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
     }
     SUBCASE("a bad ISA or tile size is an error, not a crash") {
         Run run = tessera_render(dir, {scene.string(), "-o", out, "--isa", "neon"});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "unknown ISA 'neon'"));
         run = tessera_render(dir, {scene.string(), "-o", out, "--tile-size", "48"});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "tile size must be a power of two"));
     }
     SUBCASE("an unknown AOV name, or AOVs without an EXR output") {
@@ -214,13 +214,13 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
         fs::remove(exr);
         fs::remove(out);
         Run run = tessera_render(dir, {scene.string(), "-o", exr.string(), "--aov", "depth,colour"});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "unknown AOV 'colour' in 'depth,colour' (expected a comma-separated list of depth, "
                                 "normal, albedo, roughness, metallic, position)"));
         CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
         CHECK_FALSE(fs::exists(exr));
         run = tessera_render(dir, {scene.string(), "-o", out, "--aov", "depth"});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "--aov needs an .exr output"));
         CHECK_FALSE(fs::exists(out));
     }
@@ -251,14 +251,16 @@ TEST_CASE("a failed render or write never loses the file already at the output p
         const fs::path folder = dir / "folder.exr";
         fs::create_directories(folder);
         const Run run = tessera_render(dir, {good.string(), "-o", image.string(), "-o", folder.string()});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);  // refused before rendering
         CHECK(contains(run.err, "folder.exr"));
         CHECK(fs::is_directory(folder));
     }
-    SUBCASE("an output folder that does not exist") {
+    SUBCASE("an output folder that does not exist is made") {
+        fs::remove_all(dir / "missing");
         const Run run = tessera_render(dir, {good.string(), "-o", (dir / "missing" / "x.png").string()});
-        CHECK(run.status == 1);
-        CHECK_FALSE(fs::exists(dir / "missing"));
+        CHECK(run.status == 0);
+        CHECK(fs::exists(dir / "missing" / "x.png"));
+        fs::remove_all(dir / "missing");
     }
     CHECK(read_file(image) == before);
     for (const auto& entry : fs::directory_iterator(dir))
@@ -296,7 +298,7 @@ TEST_CASE("several scenes in one call: {scene} names the outputs, a failure does
     }
     SUBCASE("every -o must contain {scene}") {
         const Run run = tessera_render(dir, {a.string(), c.string(), "-o", png, "-o", (dir / "fixed.exr").string()});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "with several scenes every -o must contain {scene}"));
         CHECK_FALSE(fs::exists(dir / "alpha.png"));  // refused before rendering anything
     }
@@ -304,7 +306,7 @@ TEST_CASE("several scenes in one call: {scene} names the outputs, a failure does
         fs::create_directories(dir / "other");
         write_file(dir / "other" / "alpha.toml", kSmallScene);
         const Run run = tessera_render(dir, {a.string(), (dir / "other" / "alpha.toml").string(), "-o", png});
-        CHECK(run.status == 1);
+        CHECK(run.status == 2);
         CHECK(contains(run.err, "two scene files have the stem 'alpha'"));
     }
     SUBCASE("one scene: {scene} is optional, and replaced when given") {

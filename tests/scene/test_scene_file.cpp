@@ -280,7 +280,7 @@ TEST_CASE("scene errors: structure") {
                     "test.toml:6:14: unknown key 'rough' in 'objects[0].material'");
         CHECK_ERROR(with_camera("[[objects]]\nmesh = \"cube\"\nrotation = [0, 1, 0]\n"),
                     "test.toml:6:1: unknown key 'rotation' in 'objects[0]'; valid keys: mesh, material, "
-                    "translate, rotate, scale");
+                    "translate, rotate, scale, uv_scale");
     }
     SUBCASE("tables and arrays of the wrong kind") {
         CHECK_ERROR("camera = 5\n", "test.toml:1:10: expected a table for 'camera', got integer");
@@ -354,6 +354,22 @@ TEST_CASE("scene errors: values") {
                     "test.toml:6:9: expected every component of 'objects[0].scale' to be non-zero");
         CHECK_ERROR(with_camera("[[objects]]\nmesh = \"cube\"\nscale = [1, 0.0, 1]\n"),
                     "test.toml:6:9: expected every component of 'objects[0].scale' to be non-zero");
+    }
+    SUBCASE("uv_scale: a number or [u, v], each > 0") {
+        CHECK_ERROR(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = 0\n"),
+                    "test.toml:6:12: expected 'objects[0].uv_scale' to be > 0, got 0");
+        CHECK_ERROR(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = [2, -1]\n"),
+                    "test.toml:6:16: expected 'objects[0].uv_scale[1]' to be > 0, got -1");
+        CHECK_ERROR(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = [1, 2, 3]\n"),
+                    "test.toml:6:12: expected an array [u, v] of 2 numbers for 'objects[0].uv_scale', got 3 elements");
+        CHECK_ERROR(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = \"tiled\"\n"),
+                    "test.toml:6:12: expected a number or an array [u, v] of 2 numbers for 'objects[0].uv_scale', "
+                    "got string");
+        CHECK_ERROR(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = nan\n"), "test.toml:6:12:",
+                    "'objects[0].uv_scale'");
+        const Scene scene = tessera::parse_scene(with_camera("[[objects]]\nmesh = \"plane\"\nuv_scale = 4\n"), "t.toml");
+        REQUIRE(scene.meshes.size() == 1);
+        CHECK(scene.meshes[0].uvs[0] == glm::vec2(0, 4));  // the corner at (-1, 0, 1): u 0, v 1, times 4
     }
     SUBCASE("unknown names") {
         CHECK_ERROR(with_camera("[[objects]]\nmesh = \"teapot\"\n"),

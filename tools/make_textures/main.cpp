@@ -1,4 +1,11 @@
-// tessera_make_textures OUT_DIR
+// tessera_make_textures OUT_DIR [--compare COMMITTED_DIR]
+//
+// The set is committed (scenes/textures/rust/), so that a build writes nothing
+// into the source tree and the textured demo renders from a fresh clone. The
+// test tools.make_textures_matches_committed makes it again into the build
+// folder and, with --compare, checks every texel against the committed files.
+// After changing this generator, remake them:
+//   build/tessera_make_textures scenes/textures/rust
 //
 // Writes the rusted-metal texture set of the textured demo
 // (docs/reference/pbr_lighting.md, "Textured variant"), 512×512 8-bit PNGs:
@@ -31,6 +38,7 @@
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 
 namespace {
 
@@ -167,6 +175,8 @@ Maps generate() {
     return maps;
 }
 
+constexpr const char* kMapNames[] = {"albedo.png", "metallic.png", "roughness.png", "ao.png", "normal.png"};
+
 void write(const std::filesystem::path& path, int channels, const std::vector<float>& pixels) {
     OIIO::ImageBuf buffer(OIIO::ImageSpec(kSize, kSize, channels, OIIO::TypeDesc::FLOAT),
                           const_cast<float*>(pixels.data()));
@@ -176,9 +186,33 @@ void write(const std::filesystem::path& path, int channels, const std::vector<fl
 
 }  // namespace
 
+// The maps in `made` and `committed` hold the same texels (PNG bytes may differ between zlib versions).
+int compare(const std::filesystem::path& made, const std::filesystem::path& committed) {
+    int differing = 0;
+    for (const char* map : kMapNames) {
+        OIIO::ImageBuf a((made / map).string()), b((committed / map).string());
+        if (!a.read() || !b.read()) {
+            std::fprintf(stderr, "tessera_make_textures: cannot read %s: %s%s\n", map, a.geterror().c_str(),
+                         b.geterror().c_str());
+            ++differing;
+            continue;
+        }
+        const OIIO::ImageBufAlgo::CompareResults result = OIIO::ImageBufAlgo::compare(a, b, 0.0f, 0.0f);
+        if (a.spec().width != b.spec().width || a.spec().height != b.spec().height ||
+            a.nchannels() != b.nchannels() || result.nfail > 0 || result.error) {
+            std::fprintf(stderr, "tessera_make_textures: %s differs from %s: %llu texels, largest difference %g\n",
+                         (made / map).string().c_str(), (committed / map).string().c_str(),
+                         static_cast<unsigned long long>(result.nfail), result.maxerror);
+            ++differing;
+        }
+    }
+    if (differing == 0) std::printf("the committed maps in %s are what the generator makes\n", committed.string().c_str());
+    return differing == 0 ? 0 : 1;
+}
+
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: %s OUT_DIR\n", argv[0]);
+    if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--compare")) {
+        std::fprintf(stderr, "usage: %s OUT_DIR [--compare COMMITTED_DIR]\n", argv[0]);
         return 2;
     }
     try {
@@ -193,6 +227,7 @@ int main(int argc, char** argv) {
         write(out_dir / "normal.png", 3, maps.normal);
         std::printf("wrote albedo, metallic, roughness, ao, normal (%dx%d PNG) to %s\n", kSize, kSize,
                     out_dir.string().c_str());
+        if (argc == 4) return compare(out_dir, argv[3]);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tessera_make_textures: %s\n", e.what());
         return 1;
