@@ -21,6 +21,7 @@
 
 #include "geometry/clipper.hpp"
 #include "geometry/draw_order.hpp"
+#include "geometry/line_expansion.hpp"
 #include "geometry/vertex_stage.hpp"
 #include "image/blend.hpp"
 #include "image/resolve.hpp"
@@ -104,6 +105,11 @@ void check_renderable(const Scene& scene) {
         if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size())
             throw std::invalid_argument("object " + std::to_string(o) + " refers to a missing mesh or material");
         const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.topology != Topology::triangles) {
+            if (mesh.topology == Topology::lines && mesh.indices.size() % 2 != 0)
+                throw std::invalid_argument("mesh '" + mesh.name + "' draws lines from an odd number of indices");
+            continue;  // checked again as triangles once expanded
+        }
         if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0 ||
             (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()))
             throw std::invalid_argument("mesh '" + mesh.name +
@@ -184,6 +190,7 @@ struct Renderer::Frame {
     Clock::time_point frame_start;  // the origin of profile spans
     RenderedImage image;
 
+    Scene expanded_scene;  // the scene with its points and lines as triangles (geometry/line_expansion.hpp)
     std::vector<geometry::ShadedVertex> vertices;  // every object's vertices, object after object
     std::vector<glm::vec4> tangents;               // world-space tangents, beside `vertices`; set only for meshes that have them
     std::vector<std::uint32_t> outcodes;           // one per vertex
@@ -288,9 +295,14 @@ const FrameProfile& Renderer::last_frame_profile() const { return frame_->profil
 std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame_->isa)); }
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
 
-const RenderedImage& Renderer::render(const Scene& scene) {
-    check_renderable(scene);
+const RenderedImage& Renderer::render(const Scene& given) {
+    check_renderable(given);
     Frame& f = *frame_;
+    // Points and lines become triangles for this camera and size (a copy of the
+    // scene, kept for the frame; scenes without them are drawn as they are).
+    const bool expand = geometry::has_points_or_lines(given);
+    if (expand) geometry::expand_points_and_lines(given, f.expanded_scene);
+    const Scene& scene = expand ? f.expanded_scene : given;
     f.stats = {};
     f.profile.spans.clear();
     for (WorkerScratch& s : f.scratch) s.spans.clear();

@@ -15,10 +15,12 @@ namespace tessera::gltf {
 
 // The extensions read (gltf_import.hpp says how).
 inline constexpr std::string_view kSupportedExtensions[] = {
+    "EXT_mesh_gpu_instancing",
     "EXT_meshopt_compression",
     "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_meshopt_compression",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
 };
