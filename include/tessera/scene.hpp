@@ -172,7 +172,10 @@ inline constexpr float kAutoRangeIrradiance = 1.0f / 4096.0f;
 // Never 0 (which would mean unlimited): a black light gets the smallest range.
 float auto_light_range(const glm::vec3& color);
 
-// A perspective camera, as glm::perspective and glm::lookAt take it.
+// How a camera projects: glm::perspective's frustum, or glTF's orthographic box.
+enum class Projection : std::uint8_t { perspective, orthographic };
+
+// A camera, as glm::lookAt and glm::perspective (or glTF's orthographic matrix) take it.
 struct Camera {
     glm::vec3 position{0.0f, 0.0f, 3.0f};  // world space; also the shader's camPos
     glm::vec3 target{0.0f};                // world space point looked at
@@ -180,24 +183,43 @@ struct Camera {
     float fov_y_degrees = 45.0f;           // vertical field of view, (0, 180)
     float near_plane = 0.1f;               // view-space distances, 0 < near < far
     float far_plane = 100.0f;
+    // Orthographic: the view box's half-width and half-height in world units
+    // (glTF's xmag, ymag; > 0), mapped to the image's edges whatever its aspect,
+    // and fov_y_degrees unused.
+    Projection projection = Projection::perspective;
+    float x_magnification = 1.0f;
+    float y_magnification = 1.0f;
     // A camera given as matrices instead (intrinsics K and an extrinsic, as the
     // Python module's Camera.from_intrinsics makes them): when set, view_matrix()
-    // and projection_matrix() return these, for any image size. position (the
+    // and projection_matrix() return these (`projection` below is then unused), for any image size. position (the
     // shader's camPos), target and up must still describe the same camera.
     bool explicit_matrices = false;
-    glm::mat4 view{1.0f};        // world -> view space, OpenGL's: looking along -Z, +Y up
-    glm::mat4 projection{1.0f};  // view -> clip space, OpenGL's: clip z in [-w, w]
+    glm::mat4 explicit_view{1.0f};        // world -> view space, OpenGL's: looking along -Z, +Y up
+    glm::mat4 explicit_projection{1.0f};  // view -> clip space, OpenGL's: clip z in [-w, w]
 };
 
-// An indexed triangle mesh in object space; positions, normals and uvs run in parallel.
+// What a mesh's indices draw. Points and lines (glTF modes 0..3; loops and strips
+// become line lists at import) are drawn as GL draws them at size and width 1,
+// expanded each frame into screen-space quads of triangles (src/geometry/line_expansion.hpp).
+enum class Topology : std::uint8_t {
+    triangles,  // three indices per triangle
+    points,     // one index per point
+    lines,      // two indices per segment
+};
+
+// An indexed mesh in object space (triangles, or points or lines); positions,
+// normals and uvs run in parallel.
 struct Mesh {
     std::string name;
+    Topology topology = Topology::triangles;
     std::vector<glm::vec3> positions;
+    // One per position. Points and lines may have none: glTF draws those unlit;
+    // here they are lit with a normal facing the camera (line_expansion.hpp).
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;            // empty, or one per position; (0, 0) = top-left of a texture
     std::vector<glm::vec2> uvs1;           // a second set (TextureSlot::uv_set 1): empty, or one per position
     std::vector<glm::vec4> tangents;       // empty, or one per position: xyz and handedness w = ±1 (glTF TANGENT)
-    std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
+    std::vector<std::uint32_t> indices;  // three per triangle (one per point, two per line), each < positions.size()
     // Added for vertex colours (glTF COLOR_0): empty, or one per position, linear RGBA in
     // [0, 1] (alpha 1 where the file gives RGB). RGB multiplies the material's albedo and
     // its map, alpha its alpha; interpolated perspective-correctly like the uvs.
@@ -299,6 +321,8 @@ Mesh make_plane_mesh();   // 2×2 square in the XZ plane at y = 0, normal +Y, uv
 Mesh make_cube_mesh();    // 2×2×2 cube centred on the origin, flat normals, 24 vertices
 
 // The camera's matrices with OpenGL conventions (right-handed view, clip z in [-w, w]).
+// An orthographic camera's projection is glTF's (spec §3.10.3): diag(1/xmag, 1/ymag,
+// 2/(near − far)), z offset (far + near)/(near − far), w = 1; width and height unused.
 glm::mat4 view_matrix(const Camera& camera);
 glm::mat4 projection_matrix(const Camera& camera, int width, int height);
 

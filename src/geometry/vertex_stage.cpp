@@ -71,9 +71,12 @@ void run_vertex_stage(simd::Isa isa, const Mesh& mesh, std::size_t first, const 
 void transform_tangents(const Mesh& mesh, std::size_t first, const glm::mat4& model, std::span<glm::vec4> out) {
     assert(first + out.size() <= mesh.tangents.size());
     const glm::mat3 to_world(model);
+    // A mirroring transform turns cross(N, T) around (the normal matrix keeps N
+    // outward, T follows the surface): the handedness flips with it.
+    const float handedness = glm::determinant(to_world) < 0.0f ? -1.0f : 1.0f;
     for (std::size_t i = 0; i < out.size(); ++i) {
         const glm::vec4& t = mesh.tangents[first + i];
-        out[i] = glm::vec4(to_world * glm::vec3(t), t.w);
+        out[i] = glm::vec4(to_world * glm::vec3(t), t.w * handedness);
     }
 }
 

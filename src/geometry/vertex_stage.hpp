@@ -42,7 +42,9 @@ void run_vertex_stage(simd::Isa isa, const Mesh& mesh, std::size_t first, const 
 
 // The mesh's tangents [first, first + out.size()) in world space: tangents
 // follow the surface, so they take the model matrix itself (glTF's rule), not
-// the normal matrix; w, the handedness, is kept.
+// the normal matrix; w, the handedness, is kept, and flipped where the model
+// matrix has a negative determinant (a mirror), so that B = cross(N, T)·w
+// still points along the mapped surface's bitangent.
 void transform_tangents(const Mesh& mesh, std::size_t first, const glm::mat4& model, std::span<glm::vec4> out);
 
 }  // namespace tessera::geometry

@@ -126,8 +126,8 @@ Camera camera_from_intrinsics(const py::object& k_value, const py::object& extri
     }
     Camera camera;
     camera.explicit_matrices = true;
-    camera.view = view;
-    camera.projection = intrinsic_projection(k, width, height, near_plane, far_plane);
+    camera.explicit_view = view;
+    camera.explicit_projection = intrinsic_projection(k, width, height, near_plane, far_plane);
     // The same camera as position/target/up, for the shader's camPos and what reads those.
     const glm::mat4 camera_to_world = glm::inverse(view);
     camera.position = glm::vec3(camera_to_world[3]);

@@ -22,6 +22,7 @@
 
 #include "geometry/clipper.hpp"
 #include "geometry/draw_order.hpp"
+#include "geometry/line_expansion.hpp"
 #include "geometry/vertex_stage.hpp"
 #include "image/blend.hpp"
 #include "image/environment_background.hpp"
@@ -109,6 +110,11 @@ void check_renderable(const Scene& scene) {
         if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size())
             throw std::invalid_argument("object " + std::to_string(o) + " refers to a missing mesh or material");
         const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.topology != Topology::triangles) {
+            if (mesh.topology == Topology::lines && mesh.indices.size() % 2 != 0)
+                throw std::invalid_argument("mesh '" + mesh.name + "' draws lines from an odd number of indices");
+            continue;  // checked again as triangles once expanded
+        }
         if (mesh.normals.size() != mesh.positions.size() || mesh.indices.size() % 3 != 0 ||
             (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) ||
             (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()))
@@ -195,6 +201,7 @@ struct Renderer::Frame {
     Clock::time_point frame_start;  // the origin of profile spans
     RenderedImage image;
 
+    Scene expanded_scene;  // the scene with its points and lines as triangles (geometry/line_expansion.hpp)
     std::vector<geometry::ShadedVertex> vertices;  // every object's vertices, object after object
     std::vector<glm::vec4> tangents;               // world-space tangents, beside `vertices`; set only for meshes that have them
     std::vector<std::uint32_t> outcodes;           // one per vertex
@@ -308,9 +315,14 @@ std::string Renderer::isa_name() const { return std::string(simd::isa_name(frame
 int Renderer::threads() const { return frame_->arena.max_concurrency(); }
 void Renderer::swap_image(RenderedImage& other) { std::swap(frame_->image, other); }
 
-const RenderedImage& Renderer::render(const Scene& scene) {
-    check_renderable(scene);
+const RenderedImage& Renderer::render(const Scene& given) {
+    check_renderable(given);
     Frame& f = *frame_;
+    // Points and lines become triangles for this camera and size (a copy of the
+    // scene, kept for the frame; scenes without them are drawn as they are).
+    const bool expand = geometry::has_points_or_lines(given);
+    if (expand) geometry::expand_points_and_lines(given, f.expanded_scene);
+    const Scene& scene = expand ? f.expanded_scene : given;
     f.stats = {};
     f.profile.spans.clear();
     for (WorkerScratch& s : f.scratch) s.spans.clear();

@@ -37,6 +37,17 @@ Bounds scene_bounds(const Scene& scene) {
     return bounds;
 }
 
+glm::vec3 framing_direction(const Bounds& bounds) {
+    if (bounds.empty()) return {0.0f, 0.0f, 1.0f};
+    const glm::vec3 extent = bounds.max - bounds.min;
+    const float largest = std::max({extent.x, extent.y, extent.z});
+    const bool flat_y = extent.y <= kFlatExtentRatio * largest && extent.y <= extent.x && extent.y <= extent.z;
+    const bool flat_x = extent.x <= kFlatExtentRatio * largest && extent.x < extent.y && extent.x <= extent.z;
+    if (flat_y) return glm::normalize(glm::vec3(0.0f, 1.0f, 1.0f));  // above-front, 45° down
+    if (flat_x) return {1.0f, 0.0f, 0.0f};
+    return {0.0f, 0.0f, 1.0f};
+}
+
 Camera framing_camera(const Bounds& bounds, float aspect) {
     Camera camera;
     if (bounds.empty()) return camera;
@@ -47,7 +58,7 @@ Camera framing_camera(const Bounds& bounds, float aspect) {
     // The narrower of the two half-angles decides: tall images need more distance.
     const float half_fov_x = std::atan(std::tan(half_fov_y) * (aspect > 0.0f ? aspect : 1.0f));
     const float distance = radius / std::sin(std::min(half_fov_y, half_fov_x));
-    camera.position = center + glm::vec3(0.0f, 0.0f, distance);
+    camera.position = center + distance * framing_direction(bounds);
     camera.target = center;
     camera.up = {0.0f, 1.0f, 0.0f};
     camera.near_plane = 0.5f * (distance - radius);

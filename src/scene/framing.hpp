@@ -29,7 +29,16 @@ struct Bounds {
 // The world box of every object in `scene` (each mesh's box moved by its model matrix).
 Bounds scene_bounds(const Scene& scene);
 
-// A 45° camera on the +Z side of the box's centre, looking at it along -Z with
+// A box this much thinner along an axis than along its longest is a flat model.
+inline constexpr float kFlatExtentRatio = 0.1f;
+
+// From where framing_camera looks at the box's centre (unit length): +Z (looking
+// along -Z) for most models; for a model flat in Y (a floor, TwoSidedPlane)
+// from above-front, 45° down, (0, 1, 1)/√2, which shows the flat face and that
+// it lies flat; for a model flat in X (a wall facing ±X) from +X.
+glm::vec3 framing_direction(const Bounds& bounds);
+
+// A 45° camera on the framing_direction side of the box's centre, looking at it with
 // +Y up, far enough that the bounding sphere fits the narrower field of view of
 // an image of `aspect` = width / height; near and far planes enclose the sphere
 // with a margin. An empty box gets Camera{}.

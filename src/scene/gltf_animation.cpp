@@ -332,7 +332,8 @@ void apply_pose(const GltfRig& rig, const NodePose& pose, const glm::mat4& place
     for (std::size_t o = 0; o < rig.object_nodes.size(); ++o) {
         Object& object = objects[first_object + o];
         // The spec: a skinned mesh is placed by its joints alone.
-        object.model = rig.object_skinned[o] ? placement : placement * pose.world[std::size_t(rig.object_nodes[o])];
+        object.model = (rig.object_skinned[o] ? placement : placement * pose.world[std::size_t(rig.object_nodes[o])]) *
+                       rig.object_instance[o];
     }
 }
 
@@ -360,7 +361,8 @@ int find_animation(const GltfRig& rig, const std::string& selector, const std::s
 }
 
 std::shared_ptr<const GltfRig> read_rig(const tinygltf::Model& model, const std::string& source, GltfContent& content,
-                                        const std::vector<int>& object_nodes, const std::vector<MeshSource>& mesh_sources) {
+                                        const std::vector<int>& object_nodes, const std::vector<glm::mat4>& object_instances,
+                                        const std::vector<MeshSource>& mesh_sources) {
     bool deforms = false;
     for (std::size_t n = 0; n < model.nodes.size() && !deforms; ++n) deforms = node_deforms_mesh(model, int(n));
     if (!deforms && model.animations.empty()) return nullptr;  // nothing moves: the walk's result stands
@@ -416,6 +418,7 @@ std::shared_ptr<const GltfRig> read_rig(const tinygltf::Model& model, const std:
     }
 
     rig->object_nodes = object_nodes;
+    rig->object_instance = object_instances;
     rig->object_skinned.assign(object_nodes.size(), false);
     std::vector<bool> deformed(content.meshes.size(), false);
     for (std::size_t o = 0; o < content.objects.size(); ++o) {

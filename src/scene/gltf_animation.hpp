@@ -124,6 +124,7 @@ struct GltfRig {
     std::vector<gltf::DeformedMesh> deformed;
     std::vector<int> object_nodes;    // per GltfContent::objects entry: the node placing it
     std::vector<bool> object_skinned;  // per object: its mesh is skinned (model = placement alone)
+    std::vector<glm::mat4> object_instance;  // per object: its EXT_mesh_gpu_instancing transform, after the node's
     std::vector<gltf::RigAnimation> animations;
 };
 
@@ -144,11 +145,12 @@ bool node_deforms_mesh(const tinygltf::Model& model, int node);
 // the file (a SceneError naming what is wrong otherwise), and poses `content`
 // at rest: deformed meshes posed, objects' model matrices recomputed by this
 // file's node evaluation, bounds recomputed. Returns null when nothing can
-// move (no skins, morph targets or animations). `object_nodes` and
+// move (no skins, morph targets or animations). `object_nodes`, `object_instances` and
 // `mesh_sources` run in parallel with content.objects and content.meshes.
 // Warnings (animation channels on unsupported paths) go to content.warnings.
 std::shared_ptr<const GltfRig> read_rig(const tinygltf::Model& model, const std::string& source, GltfContent& content,
-                                        const std::vector<int>& object_nodes, const std::vector<MeshSource>& mesh_sources);
+                                        const std::vector<int>& object_nodes, const std::vector<glm::mat4>& object_instances,
+                                        const std::vector<MeshSource>& mesh_sources);
 
 // The animation `selector` names: an index or a name; empty = the first.
 // Throws SceneError "source: ..." listing the file's animations when none matches.

@@ -19,6 +19,10 @@ namespace tessera::gltf {
 namespace {
 
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
+// The ratified successor: the same JSON, plus vertex codec version 1 and the COLOR
+// filter (gltfpack -ce khr writes codec version 1).
+constexpr const char* kKhrMeshopt = "KHR_meshopt_compression";
+constexpr const char* kMeshoptNames[] = {kMeshopt, kKhrMeshopt};
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 
 // ---- Meshopt fallback buffers, before parsing ---------------------------------------------------
@@ -47,10 +51,12 @@ bool replace_fallback_buffers(nlohmann::json& json, bool binary, std::vector<int
         bool fallback = !buffer.contains("uri") && (!binary || b > 0);
         const auto extensions = buffer.find("extensions");
         if (extensions != buffer.end() && extensions->is_object()) {
-            const auto meshopt = extensions->find(kMeshopt);
-            if (meshopt != extensions->end() && meshopt->is_object()) {
-                const auto flag = meshopt->find("fallback");
-                fallback = fallback || (flag != meshopt->end() && flag->is_boolean() && flag->get<bool>());
+            for (const char* name : kMeshoptNames) {
+                const auto meshopt = extensions->find(name);
+                if (meshopt != extensions->end() && meshopt->is_object()) {
+                    const auto flag = meshopt->find("fallback");
+                    fallback = fallback || (flag != meshopt->end() && flag->is_boolean() && flag->get<bool>());
+                }
             }
         }
         if (!fallback) continue;
@@ -99,7 +105,8 @@ ParseInput prepare_for_tinygltf(std::span<const std::uint8_t> bytes, bool binary
         json_length = bytes.size();
     }
     json_text = std::string_view(reinterpret_cast<const char*>(bytes.data()) + json_start, json_length);
-    const bool meshopt = mentions(json_text, kMeshopt), draco = mentions(json_text, kDraco);
+    const bool meshopt = mentions(json_text, kMeshopt) || mentions(json_text, kKhrMeshopt),
+               draco = mentions(json_text, kDraco);
     if (!meshopt && !draco) return input;
     nlohmann::json json = nlohmann::json::parse(json_text, nullptr, /*allow_exceptions=*/false);
     if (json.is_discarded() || !json.is_object()) return input;
@@ -185,10 +192,10 @@ int add_buffer(tinygltf::Model& model, std::vector<unsigned char> bytes) {
 constexpr std::size_t kMaxMeshoptExpansion = 64;
 
 void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const std::vector<int>& fallback_buffers,
-                         const std::string& source) {
+                         const std::string& source, const char* extension) {
     tinygltf::BufferView& view = model.bufferViews[view_index];
-    const tinygltf::Value& ext = view.extensions.at(kMeshopt);
-    const std::string what = "bufferView " + std::to_string(view_index) + " " + kMeshopt;
+    const tinygltf::Value& ext = view.extensions.at(extension);
+    const std::string what = "bufferView " + std::to_string(view_index) + " " + extension;
     if (!ext.IsObject()) fail(source, what + " is not an object");
     const std::size_t buffer = size_field(ext, "buffer", std::nullopt, what, source);
     const std::size_t offset = size_field(ext, "byteOffset", 0, what, source);
@@ -201,6 +208,10 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
     // The extension's validity rules.
     if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES")
         fail(source, what + " mode is '" + mode + "', expected ATTRIBUTES, TRIANGLES or INDICES");
+    const std::string linked = std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." + std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10);
+    if (filter == "COLOR" && extension == kKhrMeshopt)
+        fail(source, what + " uses filter COLOR, which needs a meshoptimizer decoder newer than the " + linked +
+                         " this build has (Debian 12's); re-export with EXT_meshopt_compression (gltfpack -c)");
     if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL")
         fail(source, what + " filter is '" + filter + "', expected NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
     if (mode == "ATTRIBUTES" && (stride == 0 || stride % 4 != 0 || stride > 256))
@@ -228,6 +239,15 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
         fail(source, what + " is too short: " + std::to_string(length) + " bytes cannot hold " +
                          std::to_string(count) + " elements of " + std::to_string(stride) + " bytes");
 
+    // The first byte of an ATTRIBUTES stream is 0xa0 | codec version. This
+    // build's decoder reads version 0 only (version 1 came with meshoptimizer 0.23).
+    if (mode == "ATTRIBUTES" && length > 0 && (compressed[0] & 0xf0) == 0xa0 && (compressed[0] & 0x0f) > 0) {
+#if MESHOPTIMIZER_VERSION < 230
+        fail(source, what + " uses meshoptimizer's vertex codec version " + std::to_string(compressed[0] & 0x0f) +
+                         ", which needs meshoptimizer 0.23 or newer to decode; this build has " + linked +
+                         " (Debian 12's); re-export with EXT_meshopt_compression (gltfpack -c, not -ce khr)");
+#endif
+    }
     try {
         io::check_memory(decoded_size, what + " decoded");
     } catch (const io::MemoryBudgetError& e) {
@@ -250,13 +270,15 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
     tinygltf::BufferView& same_view = model.bufferViews[view_index];
     same_view.buffer = decoded_buffer;
     same_view.byteOffset = 0;
-    same_view.extensions.erase(kMeshopt);
+    same_view.extensions.erase(extension);
 }
 
 void decode_meshopt(tinygltf::Model& model, const std::vector<int>& fallback_buffers, const std::string& source) {
     for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
         if (model.bufferViews[v].extensions.count(kMeshopt)) {
-            decode_meshopt_view(model, v, fallback_buffers, source);
+            decode_meshopt_view(model, v, fallback_buffers, source, kMeshopt);
+        } else if (model.bufferViews[v].extensions.count(kKhrMeshopt)) {
+            decode_meshopt_view(model, v, fallback_buffers, source, kKhrMeshopt);
         } else if (std::find(fallback_buffers.begin(), fallback_buffers.end(), model.bufferViews[v].buffer) !=
                    fallback_buffers.end()) {
             fail(source, "bufferView " + std::to_string(v) + " reads buffer " +

@@ -15,6 +15,7 @@ namespace tessera::gltf {
 
 // The extensions read (gltf_import.hpp says how).
 inline constexpr std::string_view kSupportedExtensions[] = {
+    "EXT_mesh_gpu_instancing",
     "EXT_meshopt_compression",
     "EXT_texture_avif",
     "EXT_texture_webp",
@@ -22,6 +23,7 @@ inline constexpr std::string_view kSupportedExtensions[] = {
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_meshopt_compression",
     "KHR_mesh_quantization",
     "KHR_texture_transform",
 };

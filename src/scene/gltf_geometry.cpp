@@ -31,6 +31,17 @@ std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32
     return list;
 }
 
+// Loops and strips as line lists (spec §3.7.2.1): a strip joins each vertex to
+// the next, a loop also the last to the first.
+std::vector<std::uint32_t> line_list(int mode, const std::vector<std::uint32_t>& v) {
+    if (mode == TINYGLTF_MODE_LINE) return v;
+    std::vector<std::uint32_t> list;
+    if (v.size() < 2) return list;
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) list.insert(list.end(), {v[i], v[i + 1]});
+    if (mode == TINYGLTF_MODE_LINE_LOOP) list.insert(list.end(), {v.back(), v.front()});
+    return list;
+}
+
 // glTF's rule for a primitive without normals: flat shading. Each triangle gets
 // its own three vertices carrying the face normal. `sources` gets the vertex
 // each new one copies.
@@ -133,14 +144,14 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
                              int second_texcoord_set) {
     PrimitiveMesh result;
     const int mode = primitive.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
-            fail(source, label + " has mode " + std::to_string(mode) + "; glTF modes are 0..6");
-        return result;  // points and lines: nothing to fill
-    }
+    if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(source, label + " has mode " + std::to_string(mode) + "; glTF modes are 0..6");
     result.is_surface = true;
     Mesh& mesh = result.mesh;
     mesh.name = label;
+    mesh.topology = mode == TINYGLTF_MODE_POINTS ? Topology::points
+                    : mode <= TINYGLTF_MODE_LINE_STRIP ? Topology::lines
+                                                       : Topology::triangles;
     const AccessorReader reader(model, source);
     const int position_accessor = attribute(primitive, "POSITION");
     if (position_accessor < 0) fail(source, label + " has no POSITION attribute");
@@ -190,6 +201,20 @@ PrimitiveMesh read_primitive(const tinygltf::Model& model, const tinygltf::Primi
     } else {
         vertices.resize(vertex_count);
         for (std::size_t i = 0; i < vertex_count; ++i) vertices[i] = std::uint32_t(i);
+    }
+    if (mode == TINYGLTF_MODE_POINTS) {
+        mesh.indices = std::move(vertices);
+        return result;  // no NORMAL: lit facing the camera (Mesh::normals)
+    }
+    if (mesh.topology == Topology::lines) {
+        // LINES with an odd vertex count (the validator's MESH_PRIMITIVE_INCOMPATIBLE_MODE):
+        // not drawn, counted in GltfContent::skipped_primitives.
+        if (mode == TINYGLTF_MODE_LINE && vertices.size() % 2 != 0) {
+            result.is_surface = false;
+            return result;
+        }
+        mesh.indices = line_list(mode, vertices);
+        return result;
     }
     if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (vertices.size() % 3 != 0)

@@ -16,9 +16,10 @@ namespace tessera::gltf {
 // Throws SceneError "source: message".
 [[noreturn]] void fail(const std::string& source, const std::string& message);
 
-// The result of converting one primitive: a mesh, or nothing for points and lines.
+// The result of converting one primitive: a mesh (triangles, points or lines:
+// Mesh::topology; points and lines without NORMAL keep no normals).
 struct PrimitiveMesh {
-    bool is_surface = false;
+    bool is_surface = false;  // false: not drawn (LINES with an odd vertex count), counted as skipped
     Mesh mesh;
     // Without NORMAL, flat normals split the vertices per triangle: the glTF
     // vertex each Mesh vertex copies (what morph targets and skin weights

@@ -302,7 +302,17 @@ public:
         for (std::size_t c = 0; c < model_.cameras.size(); ++c)
             content_.cameras[c].name = model_.cameras[c].name, content_.cameras[c].type = model_.cameras[c].type;
         walk_nodes();
-        content_.rig = gltf::read_rig(model_, source_, content_, object_nodes_, mesh_sources_);
+        // The file's first camera is the one a viewer shows first: say when it is not the one used.
+        if (!content_.cameras.empty() && !content_.cameras[0].view) {
+            const std::string first = indexed("cameras", 0, content_.cameras[0].name);
+            std::size_t used = 0;
+            while (used < content_.cameras.size() && !content_.cameras[used].view) ++used;
+            content_.warnings.push_back(first + " is skipped: no node of the scene places it; " +
+                                        (used < content_.cameras.size()
+                                             ? "using " + indexed("cameras", used, content_.cameras[used].name)
+                                             : std::string("framing the model instead")));
+        }
+        content_.rig = gltf::read_rig(model_, source_, content_, object_nodes_, object_instances_, mesh_sources_);
         gltf_import_times().convert_ns += nanoseconds_since(start);
         start = std::chrono::steady_clock::now();
         decode_textures();
@@ -428,7 +438,11 @@ private:
             visited[index] = true;
             const glm::mat4 world = pending.parent_world * local_transform(node, label);
             if (!finite(world)) fail(label + " has a world transform that is not finite");
-            if (node.mesh >= 0) place_mesh(node.mesh, world, label, pending.node);
+            if (node.mesh >= 0) {
+                const std::vector<glm::mat4> instances = gpu_instances(node, label);
+                if (instances.empty()) place_mesh(node.mesh, world, label, pending.node, glm::mat4(1.0f));
+                for (const glm::mat4& instance : instances) place_mesh(node.mesh, world, label, pending.node, instance);
+            }
             node_name_ = node.name;
             if (node.camera >= 0) read_camera(node.camera, world, label);
             read_node_light(node, world, label);
@@ -444,7 +458,70 @@ private:
         std::uint32_t material;
     };
 
-    void place_mesh(int mesh_index, const glm::mat4& world, const std::string& node_label, int node) {
+    // EXT_mesh_gpu_instancing: one transform T·R·S per instance, applied before the
+    // node's own (world × instance); empty when the node has none. The mesh is
+    // converted once and each instance is one more Object drawing it.
+    std::vector<glm::mat4> gpu_instances(const tinygltf::Node& node, const std::string& node_label) const {
+        const auto extension = node.extensions.find("EXT_mesh_gpu_instancing");
+        if (extension == node.extensions.end()) return {};
+        const std::string what = node_label + " EXT_mesh_gpu_instancing";
+        const tinygltf::Value& attributes = extension->second.Get("attributes");
+        if (!attributes.IsObject()) fail(what + " has no 'attributes' object");
+        constexpr int f32 = TINYGLTF_COMPONENT_TYPE_FLOAT, i8 = TINYGLTF_COMPONENT_TYPE_BYTE,
+                      i16 = TINYGLTF_COMPONENT_TYPE_SHORT;
+        struct Column {
+            const char* name;
+            int type;
+            std::vector<float> values;
+        };
+        Column columns[] = {{"TRANSLATION", TINYGLTF_TYPE_VEC3, {}}, {"ROTATION", TINYGLTF_TYPE_VEC4, {}},
+                            {"SCALE", TINYGLTF_TYPE_VEC3, {}}};
+        std::size_t count = 0;
+        const char* counted = nullptr;
+        for (Column& column : columns) {
+            const tinygltf::Value& accessor = attributes.Get(column.name);
+            if (!accessor.IsInt()) {
+                if (accessor.Type() != tinygltf::NULL_TYPE) fail(what + " " + column.name + " is not an accessor index");
+                continue;
+            }
+            const std::string label = what + " " + column.name;
+            // The extension's types: floats, and for ROTATION normalized bytes and shorts.
+            column.values = column.type == TINYGLTF_TYPE_VEC4
+                                ? gltf::read_accessor_floats(model_, accessor.GetNumberAsInt(), source_, label,
+                                                             column.type, {f32, i8, i16}, true)
+                                : gltf::read_accessor_floats(model_, accessor.GetNumberAsInt(), source_, label,
+                                                             column.type, {f32}, false);
+            const std::size_t n = column.values.size() / (column.type == TINYGLTF_TYPE_VEC4 ? 4 : 3);
+            if (counted && n != count)
+                fail(label + " (accessor " + std::to_string(accessor.GetNumberAsInt()) + ") has " + std::to_string(n) +
+                     " elements but " + counted + " has " + std::to_string(count) +
+                     "; every instancing attribute has one element per instance");
+            count = n, counted = column.name;
+        }
+        if (!counted) fail(what + " has none of TRANSLATION, ROTATION, SCALE");
+        if (count == 0) fail(what + " has 0 instances");
+        std::vector<glm::mat4> instances(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            glm::mat4 m(1.0f);
+            if (const auto& t = columns[0].values; !t.empty())
+                m = glm::translate(m, glm::vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+            if (const auto& r = columns[1].values; !r.empty()) {
+                const glm::quat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);  // glTF: x, y, z, w
+                const float length = glm::length(q);
+                if (!(length > 0.0f) || !std::isfinite(length))
+                    fail(what + " ROTATION element " + std::to_string(i) + " is a quaternion of length 0 or not finite");
+                m = m * glm::mat4_cast(q / length);
+            }
+            if (const auto& s = columns[2].values; !s.empty())
+                m = glm::scale(m, glm::vec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+            if (!finite(m)) fail(what + " element " + std::to_string(i) + " has a transform that is not finite");
+            instances[i] = m;
+        }
+        return instances;
+    }
+
+    void place_mesh(int mesh_index, const glm::mat4& world, const std::string& node_label, int node,
+                    const glm::mat4& instance) {
         if (std::size_t(mesh_index) >= model_.meshes.size())
             fail(node_label + " uses mesh " + std::to_string(mesh_index) + " but the file has " +
                  std::to_string(model_.meshes.size()) + " meshes");
@@ -453,7 +530,8 @@ private:
         auto converted = converted_meshes_.find(mesh_index);
         if (gltf::node_deforms_mesh(model_, node)) own = convert_mesh(mesh_index);
         else if (converted == converted_meshes_.end()) converted = converted_meshes_.emplace(mesh_index, convert_mesh(mesh_index)).first;
-        // One object id per node that places a mesh: its primitives are one object to a person.
+        // One object id per node (and per EXT_mesh_gpu_instancing instance) placing a mesh: its
+        // primitives are one object to a person.
         const auto id = std::uint32_t(++placed_nodes_);
         for (const PlacedPrimitive& primitive : gltf::node_deforms_mesh(model_, node) ? own : converted->second) {
             try {  // an object and its node: ~100 bytes, but 10^5 nodes x 10^5 primitives add up
@@ -462,8 +540,9 @@ private:
                 fail(e.what());
             }
             object_nodes_.push_back(node);
-            content_.objects.push_back(Object{primitive.mesh, primitive.material, world, id});
-            content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world));
+            object_instances_.push_back(instance);
+            content_.objects.push_back(Object{primitive.mesh, primitive.material, world * instance, id});
+            content_.bounds.add(mesh_bounds_[primitive.mesh].transformed(world * instance));
         }
     }
 
@@ -708,16 +787,44 @@ private:
         const tinygltf::Camera& gltf_camera = model_.cameras[std::size_t(camera_index)];
         PlacedGltfCamera& placed = content_.cameras[std::size_t(camera_index)];
         if (placed.name.empty()) placed.name = node_name_;  // an unnamed camera goes by its node's name
-        if (placed.view || gltf_camera.type != "perspective") return;  // where a node first places it
+        if (placed.view) return;  // where a node first places it
+        const bool orthographic = gltf_camera.type == "orthographic";
+        if (!orthographic && gltf_camera.type != "perspective") return;  // tinygltf refuses other types
         const std::string label = indexed("cameras", std::size_t(camera_index), gltf_camera.name);
-        const tinygltf::PerspectiveCamera& p = gltf_camera.perspective;
-        if (!(p.yfov > 0.0 && p.yfov < M_PI)) fail(label + " yfov is " + std::to_string(p.yfov) + ", expected radians in (0, π)");
-        if (!(p.znear > 0.0 && std::isfinite(float(p.znear)))) fail(label + " znear is " + std::to_string(p.znear) + ", expected > 0");
-        if (p.zfar != 0.0 && !(p.zfar > p.znear && std::isfinite(float(p.zfar))))
-            fail(label + " zfar is " + std::to_string(p.zfar) + ", expected > znear (" + std::to_string(p.znear) + ")");
-        if (!(p.aspectRatio >= 0.0 && std::isfinite(float(p.aspectRatio))))
-            fail(label + " aspectRatio is " + std::to_string(p.aspectRatio) + ", expected > 0");
         GltfCamera camera;
+        if (orthographic) {
+            // glTF's orthographic matrix (projection_matrix): xmag, ymag != 0, zfar > znear >= 0.
+            const tinygltf::OrthographicCamera& o = gltf_camera.orthographic;
+            if (!(std::abs(o.xmag) > 0.0 && std::isfinite(float(o.xmag)) && std::abs(o.ymag) > 0.0 &&
+                  std::isfinite(float(o.ymag))))
+                fail(label + " xmag, ymag are " + std::to_string(o.xmag) + ", " + std::to_string(o.ymag) +
+                     "; expected finite numbers other than 0");
+            if (o.xmag < 0.0 || o.ymag < 0.0)
+                fail(label + " has a negative xmag or ymag (" + std::to_string(o.xmag) + ", " + std::to_string(o.ymag) +
+                     "), a mirrored view; expected > 0");
+            if (!(o.znear >= 0.0 && std::isfinite(float(o.znear))))
+                fail(label + " znear is " + std::to_string(o.znear) + ", expected >= 0");
+            if (!(o.zfar > o.znear && std::isfinite(float(o.zfar))))
+                fail(label + " zfar is " + std::to_string(o.zfar) + ", expected > znear (" + std::to_string(o.znear) + ")");
+            camera.camera.projection = Projection::orthographic;
+            camera.camera.x_magnification = float(o.xmag);
+            camera.camera.y_magnification = float(o.ymag);
+            camera.camera.near_plane = float(o.znear);
+            camera.camera.far_plane = float(o.zfar);
+            camera.aspect_ratio = float(o.xmag / o.ymag);  // the box maps to the whole image
+        } else {
+            const tinygltf::PerspectiveCamera& p = gltf_camera.perspective;
+            if (!(p.yfov > 0.0 && p.yfov < M_PI)) fail(label + " yfov is " + std::to_string(p.yfov) + ", expected radians in (0, π)");
+            if (!(p.znear > 0.0 && std::isfinite(float(p.znear)))) fail(label + " znear is " + std::to_string(p.znear) + ", expected > 0");
+            if (p.zfar != 0.0 && !(p.zfar > p.znear && std::isfinite(float(p.zfar))))
+                fail(label + " zfar is " + std::to_string(p.zfar) + ", expected > znear (" + std::to_string(p.znear) + ")");
+            if (!(p.aspectRatio >= 0.0 && std::isfinite(float(p.aspectRatio))))
+                fail(label + " aspectRatio is " + std::to_string(p.aspectRatio) + ", expected > 0");
+            camera.camera.fov_y_degrees = float(p.yfov) * kRadiansToDegrees;
+            camera.camera.near_plane = float(p.znear);
+            camera.camera.far_plane = p.zfar == 0.0 ? std::numeric_limits<float>::infinity() : float(p.zfar);
+            camera.aspect_ratio = float(p.aspectRatio);
+        }
         camera.camera.position = glm::vec3(world[3]);
         const glm::vec3 forward = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
         const glm::vec3 up = glm::mat3(world) * glm::vec3(0.0f, 1.0f, 0.0f);
@@ -725,10 +832,6 @@ private:
             fail(node_label + " places " + label + " with a degenerate transform (no view direction or up)");
         camera.camera.target = camera.camera.position + glm::normalize(forward);
         camera.camera.up = glm::normalize(up);
-        camera.camera.fov_y_degrees = float(p.yfov) * kRadiansToDegrees;
-        camera.camera.near_plane = float(p.znear);
-        camera.camera.far_plane = p.zfar == 0.0 ? std::numeric_limits<float>::infinity() : float(p.zfar);
-        camera.aspect_ratio = float(p.aspectRatio);
         placed.view = camera;
         if (!content_.camera) content_.camera = camera;
     }
@@ -785,7 +888,8 @@ private:
     std::vector<Bounds> mesh_bounds_;                                // per content_.meshes entry, object space
     std::vector<gltf::MeshSource> mesh_sources_;                     // per content_.meshes entry: its glTF primitive
     std::vector<int> object_nodes_;                                  // per content_.objects entry: its node
-    std::size_t placed_nodes_ = 0;                                   // nodes that placed a mesh so far: the object ids
+    std::size_t placed_nodes_ = 0;                                   // nodes that placed a mesh so far: the object ids (one per instance)
+    std::vector<glm::mat4> object_instances_;                        // and its EXT_mesh_gpu_instancing transform
     std::map<int, std::uint32_t> converted_materials_;               // glTF material (-1: default) -> index
     std::map<int, gltf::MaterialUvs> uv_mappings_;                     // glTF material -> its maps' uvs
     std::map<std::pair<int, texture::ColorSpace>, std::int32_t> texture_indices_;
@@ -885,13 +989,11 @@ const GltfCamera& selected_camera(const GltfContent& content, const std::string&
     std::string known;
     for (std::size_t c = 0; c < content.cameras.size(); ++c)
         known += (c ? ", " : "") + std::to_string(c) + (content.cameras[c].name.empty() ? "" : " " + quoted(content.cameras[c].name)) +
-                 " (" + content.cameras[c].type + (content.cameras[c].view || content.cameras[c].type != "perspective" ? "" : ", not placed") + ")";
+                 " (" + content.cameras[c].type + (content.cameras[c].view ? "" : ", not placed") + ")";
     if (known.empty()) known = "none";
     if (!index || *index >= content.cameras.size())
         fail(source, "--camera " + quoted(selector) + " names no camera of the file; its cameras: " + known);
     const PlacedGltfCamera& placed = content.cameras[*index];
-    if (placed.type != "perspective")
-        fail(source, "--camera " + quoted(selector) + " is an " + placed.type + " camera; only perspective cameras are supported");
     if (!placed.view) fail(source, "--camera " + quoted(selector) + " is not placed by any node of the scene");
     return *placed.view;
 }

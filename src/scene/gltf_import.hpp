@@ -8,9 +8,12 @@
 // - The default scene (`scene`), else scene 0, else every root node. World
 //   transform = parent × (matrix, or T·R·S). Each node with a mesh places one
 //   Object per primitive; a mesh used by several nodes is converted once.
+//   EXT_mesh_gpu_instancing: one more Object per instance (world × T·R·S of
+//   its TRANSLATION, ROTATION, SCALE), all drawing the one converted mesh.
 // - Primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (turned into triangle
-//   lists). POINTS and LINE* are not surfaces: skipped and counted
-//   (GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
+//   lists); POINTS, and LINES, LINE_STRIP, LINE_LOOP (turned into line lists),
+//   as Mesh::topology says (LINES with an odd vertex count are skipped and
+//   counted in GltfContent::skipped_primitives). Indexed (u8, u16, u32) or not.
 //   POSITION (required), NORMAL and TANGENT as float, TEXCOORD_n (the set the
 //   material's maps read) as float or normalized u8/u16, COLOR_0 (VEC3/VEC4,
 //   float or normalized u8/u16, into Mesh::colors: it multiplies the base
@@ -59,8 +62,9 @@
 // - Cameras: the first perspective camera met in the node walk (depth first,
 //   in node order), or the one --camera NAME|INDEX selects. It looks down its node's -Z with +Y up; yfov, znear, zfar
 //   (absent = infinite: a far plane past the model's bounds is chosen) and
-//   aspectRatio (kept in GltfCamera; 0 when absent). Orthographic cameras are
-//   skipped.
+//   aspectRatio (kept in GltfCamera; 0 when absent). Orthographic cameras keep
+//   xmag, ymag, znear, zfar (glTF's matrix, projection_matrix) and ask for the
+//   aspect xmag / ymag. A first camera no node places is skipped with a warning.
 // - KHR_lights_punctual: point, spot and directional lights on nodes. Light::color
 //   = color × intensity, used as is: glTF's candela (point, spot) is taken as
 //   our radiance·distance² and lux (directional) as radiance, with no 4π or 683
@@ -96,7 +100,7 @@ struct GltfCamera {
 struct PlacedGltfCamera {
     std::string name;                // the camera's name, or else its node's
     std::string type;                // "perspective" or "orthographic"
-    std::optional<GltfCamera> view;  // perspective cameras placed by a node; else none
+    std::optional<GltfCamera> view;  // where a node placed it; else none
 };
 
 // What one glTF file holds, in its own index space: Object::mesh and ::material
@@ -110,7 +114,7 @@ struct GltfContent {
     std::optional<GltfCamera> camera;     // the first perspective camera met in the node walk
     std::vector<PlacedGltfCamera> cameras;  // one per entry of the file's `cameras`, in its order
     Bounds bounds;                // world box of every object
-    int skipped_primitives = 0;   // points and lines, not drawn
+    int skipped_primitives = 0;   // primitives not drawn: LINES with an odd vertex count
     // One line each, without the file name: what was ignored (extensions the
     // file uses that are not supported). import_gltf_file prints them.
     std::vector<std::string> warnings;
@@ -170,7 +174,7 @@ void append_gltf_content(Scene& scene, const GltfContent& content, const glm::ma
 // framing_camera; the file's lights or default_light_rig. Validated.
 // camera_selector (the CLI's --camera): empty for the first perspective camera,
 // else an index into the file's cameras or a camera's name (a node's name for
-// an unnamed camera); a selector naming no perspective camera placed in the
+// an unnamed camera); a selector naming no camera placed in the
 // scene is a SceneError listing the cameras there are.
 Scene make_gltf_scene(const GltfContent& content, const std::string& source, const std::string& camera_selector = "");
 

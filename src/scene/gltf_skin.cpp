@@ -3,6 +3,7 @@
 #include "scene/gltf_skin.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <map>
 
@@ -115,6 +116,8 @@ DeformedMesh read_deformed_mesh(const tinygltf::Model& model, const std::string&
         return values;
     };
 
+    const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
     const std::size_t targets = primitive.targets.size();
     deformed.position_deltas.resize(targets);
     deformed.normal_deltas.resize(targets);
@@ -125,9 +128,14 @@ DeformedMesh read_deformed_mesh(const tinygltf::Model& model, const std::string&
         const auto read_deltas = [&](const char* name, std::vector<glm::vec3>& deltas) {
             const int accessor = find_attribute(attributes, name);
             if (accessor < 0) return;
+            // KHR_mesh_quantization lets POSITION deltas be plain (not normalized)
+            // bytes and shorts, in the quantized positions' units (gltfpack writes
+            // them); NORMAL and TANGENT deltas stay normalized.
+            const bool plain_integers = quantized && std::strcmp(name, "POSITION") == 0;
             const std::vector<float> values =
                 read(accessor, target + name, TINYGLTF_TYPE_VEC3,
-                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT}, true);
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT},
+                     !plain_integers);
             deltas.resize(vertices);
             for (std::size_t v = 0; v < vertices; ++v) {
                 const float* d = &values[3 * source_vertex(v)];

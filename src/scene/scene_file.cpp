@@ -147,8 +147,28 @@ private:
     }
 
     Camera read_camera(const toml::table& table) const {
-        check_keys(table, "camera", {"position", "target", "up", "fov_y", "near", "far"});
+        check_keys(table, "camera", {"position", "target", "up", "fov_y", "near", "far", "projection", "xmag", "ymag"});
         Camera camera;
+        if (const toml::node* projection = table.get("projection")) {
+            const std::string text = read_string(*projection, "camera.projection");
+            if (text == "orthographic") camera.projection = Projection::orthographic;
+            else if (text != "perspective")
+                fail_at(projection->source(), "unsupported camera projection '" + text +
+                                                  "' for 'camera.projection'; expected \"perspective\" or \"orthographic\"");
+        }
+        const bool orthographic = camera.projection == Projection::orthographic;
+        for (const char* key : {"xmag", "ymag"}) {
+            const toml::node* node = table.get(key);
+            if (node == nullptr) continue;
+            const std::string name = std::string("camera.") + key;
+            if (!orthographic) fail_at(node->source(), "'" + name + "' applies to projection = \"orthographic\" only");
+            const float value = read_float(*node, name);
+            if (!(value > 0.0f && std::isfinite(value)))
+                fail_at(node->source(), "expected '" + name + "' to be a finite number > 0, got " + to_text(value));
+            (key[0] == 'x' ? camera.x_magnification : camera.y_magnification) = value;
+        }
+        if (orthographic && table.get("fov_y") != nullptr)
+            fail_at(table.get("fov_y")->source(), "'camera.fov_y' does not apply to an orthographic camera (use xmag, ymag)");
         camera.position = read_vec3(require(table, "position", "camera"), "camera.position");
         const toml::node& target = require(table, "target", "camera");
         camera.target = read_vec3(target, "camera.target");
@@ -165,9 +185,9 @@ private:
         const toml::node* near = table.get("near");
         if (near != nullptr) {
             camera.near_plane = read_float(*near, "camera.near");
-            if (!(camera.near_plane > 0.0f)) {
-                fail_at(near->source(),
-                        "expected 'camera.near' to be > 0, got " + to_text(camera.near_plane));
+            if (!(orthographic ? camera.near_plane >= 0.0f : camera.near_plane > 0.0f)) {
+                fail_at(near->source(), std::string("expected 'camera.near' to be ") + (orthographic ? ">= 0" : "> 0") +
+                                            ", got " + to_text(camera.near_plane));
             }
         }
         const toml::node* far = table.get("far");

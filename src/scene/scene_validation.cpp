@@ -48,8 +48,16 @@ void validate_camera(const Scene& scene) {
     if (!(c.fov_y_degrees > 0.0f && c.fov_y_degrees < 180.0f)) {
         fail(scene, "camera fov_y must be in (0, 180) degrees, got ", c.fov_y_degrees);
     }
-    if (!(c.near_plane > 0.0f && c.near_plane < c.far_plane && std::isfinite(c.far_plane))) {
-        fail(scene, "camera planes must satisfy 0 < near < far, got near = ", c.near_plane, ", far = ", c.far_plane);
+    const bool orthographic = c.projection == Projection::orthographic;
+    if (orthographic && !(c.x_magnification > 0.0f && c.y_magnification > 0.0f && std::isfinite(c.x_magnification) &&
+                          std::isfinite(c.y_magnification)))
+        fail(scene, "orthographic camera xmag and ymag must be finite and > 0, got ", c.x_magnification, ", ",
+             c.y_magnification);
+    // An orthographic box may start at the eye (glTF allows znear = 0); a frustum may not.
+    if (!((orthographic ? c.near_plane >= 0.0f : c.near_plane > 0.0f) && c.near_plane < c.far_plane &&
+          std::isfinite(c.far_plane))) {
+        fail(scene, "camera planes must satisfy ", orthographic ? "0 <= near < far" : "0 < near < far",
+             ", got near = ", c.near_plane, ", far = ", c.far_plane);
     }
     // The same tolerances as the scene file reader.
     const glm::vec3 forward = c.target - c.position;
@@ -116,7 +124,8 @@ void validate_meshes(const Scene& scene) {
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         const std::size_t vertices = mesh.positions.size();
-        if (mesh.normals.size() != vertices) {
+        const bool points_or_lines = mesh.topology != Topology::triangles;
+        if (mesh.normals.size() != vertices && !(points_or_lines && mesh.normals.empty())) {
             fail(scene, mesh_label(scene, m), " has ", mesh.normals.size(), " normals for ", vertices,
                  " positions");
         }
@@ -136,14 +145,18 @@ void validate_meshes(const Scene& scene) {
             if (!(in_unit_interval(c.r) && in_unit_interval(c.g) && in_unit_interval(c.b) && in_unit_interval(c.a)))
                 fail(scene, mesh_label(scene, m), " colour ", v, " is outside [0, 1]");
         }
-        if (mesh.indices.size() % 3 != 0) {
+        if (mesh.topology == Topology::triangles && mesh.indices.size() % 3 != 0) {
             fail(scene, mesh_label(scene, m), " has ", mesh.indices.size(),
                  " indices, not a multiple of 3 (three per triangle)");
+        }
+        if (mesh.topology == Topology::lines && mesh.indices.size() % 2 != 0) {
+            fail(scene, mesh_label(scene, m), " has ", mesh.indices.size(),
+                 " indices, not a multiple of 2 (two per line)");
         }
         for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
             if (mesh.indices[i] >= vertices) {
                 fail(scene, mesh_label(scene, m), ": index ", mesh.indices[i], " at indices[", i,
-                     "] (triangle ", i / 3, ") is out of range; the mesh has ", vertices, " vertices");
+                     "] is out of range; the mesh has ", vertices, " vertices");
             }
         }
     }

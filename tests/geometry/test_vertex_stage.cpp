@@ -124,3 +124,25 @@ TEST_CASE("the vertex stage gives the scalar result bit for bit with every ISA's
         }
     }
 }
+
+TEST_CASE("a mirroring model matrix flips the tangent's handedness so the bitangent follows the surface") {
+    // A surface in z = 0 with normal +z, tangent +x and bitangent cross(N, T)·w = +y.
+    Mesh mesh;
+    mesh.positions = {{0, 0, 0}};
+    mesh.normals = {{0, 0, 1}};
+    mesh.tangents = {{1, 0, 0, 1}};
+    const glm::vec3 bitangent_object = glm::cross(mesh.normals[0], glm::vec3(mesh.tangents[0])) * mesh.tangents[0].w;
+    for (const glm::vec3 scale : {glm::vec3(1, 1, 1), glm::vec3(-1, 1, 1), glm::vec3(1, -1, 1), glm::vec3(-1, -1, -1),
+                                  glm::vec3(2, -3, 1)}) {
+        INFO("scale ", scale.x, " ", scale.y, " ", scale.z);
+        const glm::mat4 model = glm::scale(glm::mat4(1.0f), scale);
+        std::vector<glm::vec4> out(1);
+        geometry::transform_tangents(mesh, 0, model, out);
+        const glm::vec3 normal_world = glm::normalize(geometry::normal_matrix(model) * mesh.normals[0]);
+        const glm::vec3 bitangent_world = glm::cross(normal_world, glm::vec3(out[0])) * out[0].w;
+        // The bitangent the surface carries is the object's one taken through the model matrix.
+        const glm::vec3 expected = glm::mat3(model) * bitangent_object;
+        CHECK(glm::dot(glm::normalize(bitangent_world), glm::normalize(expected)) == doctest::Approx(1.0f));
+        CHECK(glm::vec3(out[0]) == glm::mat3(model) * glm::vec3(mesh.tangents[0]));
+    }
+}

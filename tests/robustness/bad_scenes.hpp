@@ -11,6 +11,7 @@
 
 #include "scene/gltf_animation_files.hpp"
 #include "scene/gltf_compressed_files.hpp"
+#include "scene/gltf_geometry_files.hpp"
 #include "scene/gltf_test_files.hpp"
 
 namespace tessera::test {
@@ -32,6 +33,15 @@ inline const std::vector<BadScene>& bad_scenes() {
         {"missing_value", TESSERA_CAMERA "fov_y =\n", {"@:4:"}},
         {"duplicate_key", TESSERA_CAMERA "target = [1, 0, 0]\n", {"@:4:"}},
         {"bare_word_value", TESSERA_CAMERA "fov_y = wide\n", {"@:4:"}},
+        // Orthographic cameras.
+        {"camera_unknown_projection", TESSERA_CAMERA "projection = \"fisheye\"\n",
+         {"@:4:", "unsupported camera projection 'fisheye' for 'camera.projection'"}},
+        {"camera_xmag_with_perspective", TESSERA_CAMERA "xmag = 2.0\n",
+         {"@:4:", "'camera.xmag' applies to projection = \"orthographic\" only"}},
+        {"camera_orthographic_ymag_zero", TESSERA_CAMERA "projection = \"orthographic\"\nymag = 0.0\n",
+         {"@:5:", "expected 'camera.ymag' to be a finite number > 0, got 0"}},
+        {"camera_orthographic_fov", TESSERA_CAMERA "projection = \"orthographic\"\nfov_y = 30.0\n",
+         {"@:5:", "'camera.fov_y' does not apply to an orthographic camera"}},
         {"binary_garbage", std::string_view("\x00\xff\xfe[[\x01", 6), {"@:1:"}},
         {"invalid_utf8_string", TESSERA_CAMERA "[materials.a]\nalbedo = \"\xc3\x28\"\n", {"@:5:"}},
         // [environment]: its file (missing, not an image, not HDR) and values.
@@ -441,10 +451,45 @@ inline std::vector<BadGltf> bad_gltf_animation_files() {
     };
 }
 
+// Bad instancing, cameras, points and lines, quantized morph targets, KHR meshopt (gltf_geometry_files.hpp, broken).
+inline std::vector<BadGltf> bad_gltf_geometry_files() {
+    const std::string cameras = cameras_gltf(), lines = points_and_lines_gltf();
+    return {
+        {"gltf_instancing_count_mismatch", ".gltf", instanced_triangle_gltf(3, 2, 3),
+         {"@: nodes[0] EXT_mesh_gpu_instancing ROTATION (accessor 2) has 2 elements but TRANSLATION has 3; every "
+          "instancing attribute has one element per instance"}},
+        {"gltf_instancing_no_attributes", ".gltf",
+         replaced(instanced_triangle_gltf(), "\"attributes\":", "\"attribute\":"),
+         {"@: nodes[0] EXT_mesh_gpu_instancing has no 'attributes' object"}},
+        {"gltf_instancing_accessor_out_of_range", ".gltf",
+         replaced(instanced_triangle_gltf(), "\"TRANSLATION\": 1", "\"TRANSLATION\": 40"),
+         {"@: nodes[0] EXT_mesh_gpu_instancing TRANSLATION"}},
+        {"gltf_orthographic_xmag_zero", ".gltf", replaced(cameras, "\"xmag\": 4", "\"xmag\": 0"),
+         {"@: cameras[1] 'flat' xmag, ymag are 0"}},
+        {"gltf_orthographic_zfar_before_znear", ".gltf", replaced(cameras, "\"zfar\": 20", "\"zfar\": 0"),
+         {"@: cameras[1] 'flat' zfar is 0"}},
+        {"gltf_quantized_morph_without_extension", ".gltf",
+         replaced(replaced(quantized_morph_gltf(), "\"extensionsUsed\": [\"KHR_mesh_quantization\"],", ""),
+                  "\"extensionsRequired\": [\"KHR_mesh_quantization\"],", ""),
+         {"@: meshes[0] primitives[0] POSITION"}},
+        {"gltf_khr_meshopt_codec_v1", ".glb", as_text(khr_meshopt_grid_glb(grid_mesh(2), 1)),
+         {"@: bufferView 0 KHR_meshopt_compression uses meshoptimizer's vertex codec version 1, which needs "
+          "meshoptimizer 0.23 or newer"}},
+        {"gltf_meshopt_offset_past_buffer", ".glb",
+         [] {
+             GltfParts parts = meshopt_grid_parts(grid_mesh(2));
+             parts.json = replaced(parts.json, R"({"buffer": 0, "byteOffset": 0,)", R"({"buffer": 0, "byteOffset": 99999999,)");
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: bufferView 0 EXT_meshopt_compression spans bytes 99999999 + "}},
+    };
+}
+
 // Every bad glTF row: the importer's and those of skins and animations.
 inline std::vector<BadGltf> all_bad_gltf_files() {
     std::vector<BadGltf> rows = bad_gltf_files();
     for (BadGltf& row : bad_gltf_animation_files()) rows.push_back(std::move(row));
+    for (BadGltf& row : bad_gltf_geometry_files()) rows.push_back(std::move(row));
     return rows;
 }
 

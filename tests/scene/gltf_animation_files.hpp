@@ -41,6 +41,18 @@ public:
         for (const std::uint16_t v : values) bin_.insert(bin_.end(), {std::uint8_t(v & 0xFF), std::uint8_t(v >> 8)});
         return add(offset, values.size() * 2, 5123, values.size(), "SCALAR");
     }
+    // Signed shorts (quantized attributes, KHR_mesh_quantization), normalized or not.
+    int signed_shorts(const std::vector<std::int16_t>& values, const std::string& type, std::size_t count,
+                      bool normalized) {
+        const std::size_t offset = begin_view();
+        for (const std::int16_t v : values) {
+            const auto u = std::uint16_t(v);
+            bin_.insert(bin_.end(), {std::uint8_t(u & 0xFF), std::uint8_t(u >> 8)});
+        }
+        const int index = add(offset, values.size() * 2, 5122, count, type);
+        if (normalized) accessors_.back().insert(accessors_.back().size() - 1, ", \"normalized\": true");
+        return index;
+    }
     std::string json() const {
         std::string views, accessors;
         for (std::size_t i = 0; i < views_.size(); ++i) views += (i ? ",\n    " : "") + views_[i];

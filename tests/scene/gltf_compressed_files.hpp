@@ -239,4 +239,16 @@ inline std::vector<std::uint8_t> draco_grid_glb(const GridMesh& grid) {
 
 inline std::string as_text(const std::vector<std::uint8_t>& bytes) { return std::string(bytes.begin(), bytes.end()); }
 
+// The meshopt grid under KHR_meshopt_compression, the ratified name (gltfpack -ce khr):
+// the same JSON with the extension renamed everywhere. `codec_version` sets the
+// positions' ATTRIBUTES stream header (0xa0 | version; the encoder here writes 0).
+inline std::vector<std::uint8_t> khr_meshopt_grid_glb(const GridMesh& grid, int codec_version = 0) {
+    GltfParts parts = meshopt_grid_parts(grid);
+    for (std::size_t at = parts.json.find("EXT_meshopt_compression"); at != std::string::npos;
+         at = parts.json.find("EXT_meshopt_compression", at))
+        parts.json.replace(at, 3, "KHR");
+    parts.bin[0] = std::uint8_t(0xa0 | codec_version);  // the positions' stream starts buffer 0
+    return make_glb(parts.json, parts.bin);
+}
+
 }  // namespace tessera::test

@@ -37,7 +37,7 @@ std::string error_of(const std::string& text, const std::string& name = "bad.glt
 
 // Checks everything the test document maps; the same for every way it is stored.
 void check_test_document(const GltfContent& content) {
-    // Mesh 0 has four primitives: three surfaces and one line list (skipped). It is
+    // Mesh 0 has four primitives: three surfaces and a LINES of 3 vertices (skipped). It is
     // placed by two nodes but converted once.
     REQUIRE(content.meshes.size() == 3);
     CHECK(content.skipped_primitives == 1);
