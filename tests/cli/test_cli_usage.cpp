@@ -109,7 +109,7 @@ TEST_CASE("every other command-line mistake is one line and exit 2 too") {
     CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("a scene's type comes from its extension; anything else is refused by name before it is read") {
+TEST_CASE("a scene's type comes from its extension, anything else is refused by name before it is read") {
     const fs::path dir = tessera::test::output_dir("cli_scene_extension");
     const std::string out = (dir / "out.png").string();
     for (const char* name : {"model.obj", "model.ply", "picture.png", "scene", "scene.tomll"}) {
@@ -128,7 +128,7 @@ TEST_CASE("a scene's type comes from its extension; anything else is refused by 
     CHECK(fs::exists(out));
 }
 
-TEST_CASE("-o makes missing folders; unwritable outputs fail at once, before any work") {
+TEST_CASE("-o makes missing folders, unwritable outputs fail at once, before any work") {
     const fs::path dir = tessera::test::output_dir("cli_output_paths");
     const std::string scene = small_scene(dir).string();
     fs::remove_all(dir / "new");
