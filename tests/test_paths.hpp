@@ -2,6 +2,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string_view>
 #include <vector>
@@ -18,11 +20,26 @@ inline std::vector<std::filesystem::path> scene_files(const std::filesystem::pat
     std::sort(scenes.begin(), scenes.end());
     return scenes;
 }
-// The shared sample models (glTF), beside the checkout; tests that need them
-// skip, saying so, when the folder is absent.
-inline std::filesystem::path assets_dir() { return source_dir() / ".." / "shared" / "assets"; }
-// Scenes rendering the sample models: scenes/gltf/<name>.toml, golden/gltf/<name>.png.
-inline std::vector<std::filesystem::path> gltf_scene_files() { return scene_files(source_dir() / "scenes" / "gltf"); }
+// The sample models (glTF files in gltf/): the CMake cache variable TESSERA_ASSETS_DIR, by
+// default ../shared/assets beside the checkout. TESSERA_ASSETS_DIR in the environment stands
+// in for it (tests/assets_skip_test.sh points it to an empty folder).
+inline std::filesystem::path assets_dir() {
+    if (const char* dir = std::getenv("TESSERA_ASSETS_DIR"); dir && *dir) return dir;
+    return TESSERA_ASSETS_DIR;
+}
+// A test case that needs the sample models starts with `if (test::skip_without_assets()) return;`:
+// where there are none it prints the line that ctest's SKIP_REGULAR_EXPRESSION
+// (tests/CMakeLists.txt) reports as Skipped, and the test case ends there, having checked nothing.
+inline bool skip_without_assets() {
+    if (std::filesystem::is_directory(assets_dir() / "gltf")) return false;
+    std::printf("TESSERA_TEST_SKIPPED: no sample models at %s (TESSERA_ASSETS_DIR)\n", assets_dir().c_str());
+    std::fflush(stdout);
+    return true;
+}
+// Scenes rendering the sample models: scenes/gltf/<name>.toml (golden/gltf/<name>.png), or, when
+// TESSERA_ASSETS_DIR is not ../shared/assets, copies of them in the build tree naming it.
+inline std::filesystem::path gltf_scenes_dir() { return TESSERA_GLTF_SCENES_DIR; }
+inline std::vector<std::filesystem::path> gltf_scene_files() { return scene_files(gltf_scenes_dir()); }
 // A folder in the build tree for files the tests write.
 inline std::filesystem::path output_dir(const char* name) {
     const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "test_output" / name;

@@ -14,26 +14,17 @@ namespace {
 
 std::filesystem::path golden_manifest() { return test::source_dir() / "tests" / "golden" / "check.toml"; }
 
-// The report of the golden suite: kept in the build tree, where CI picks it up when a run fails.
-std::filesystem::path golden_report_dir() { return std::filesystem::path(TESSERA_BINARY_DIR) / "golden_report"; }
+// The reports of the golden suite: kept in the build tree, where CI picks them up when a run fails.
+std::filesystem::path golden_report_dir(const char* name) { return std::filesystem::path(TESSERA_BINARY_DIR) / name; }
 
 bool is_sample_model_scene(const check::SceneEntry& entry) { return entry.name.starts_with("gltf/"); }
 
-}  // namespace
-
-// Every scene in scenes/ (and scenes/gltf/ when the sample models are there)
-// matches its golden image golden/<name>.png under tests/golden/check.toml's
-// thresholds: the same code and manifest as `tessera check tests/golden/check.toml`.
-TEST_CASE("every scene matches its golden image (tests/golden/check.toml through the check library)") {
-    check::Suite suite = check::load_manifest(golden_manifest(), {});
-    REQUIRE(std::any_of(suite.scenes.begin(), suite.scenes.end(), [](const auto& e) { return e.name == "spheres"; }));
-    if (!std::filesystem::is_directory(test::assets_dir())) {
-        MESSAGE("skipped scenes/gltf/: no sample models at " << test::assets_dir().string());
-        std::erase_if(suite.scenes, is_sample_model_scene);
-    }
+// Renders `scenes`, writes the report to `report_dir` and checks every scene passed.
+void check_golden(const std::vector<check::SceneEntry>& scenes, const std::filesystem::path& report_dir) {
+    REQUIRE(!scenes.empty());
     check::RunOptions options;
-    options.report_dir = golden_report_dir();
-    const check::CheckRun run = check::run_check(suite.scenes, options);
+    options.report_dir = report_dir;
+    const check::CheckRun run = check::run_check(scenes, options);
     check::write_html_report(run, options.report_dir);
     check::write_junit_report(run, options.report_dir / "junit.xml");
     check::write_json_summary(run, options.report_dir / "summary.json");
@@ -43,6 +34,29 @@ TEST_CASE("every scene matches its golden image (tests/golden/check.toml through
         MESSAGE(check::describe(r));
     }
     CHECK(run.exit_status() == 0);
+}
+
+}  // namespace
+
+// Every scene in scenes/ matches its golden image golden/<name>.png under
+// tests/golden/check.toml's thresholds: the same code and manifest as
+// `tessera check tests/golden/check.toml`.
+TEST_CASE("every scene matches its golden image (tests/golden/check.toml through the check library)") {
+    check::Suite suite = check::load_manifest(golden_manifest(), {});
+    REQUIRE(std::any_of(suite.scenes.begin(), suite.scenes.end(), [](const auto& e) { return e.name == "spheres"; }));
+    std::erase_if(suite.scenes, is_sample_model_scene);
+    check_golden(suite.scenes, golden_report_dir("golden_report"));
+}
+
+// The same for scenes/gltf/ (golden/gltf/), which render the sample models: Skipped without them.
+// Where TESSERA_ASSETS_DIR is another folder, the scenes are the build tree's copies naming it.
+TEST_CASE("every sample-model scene (scenes/gltf) matches its golden image (tests/golden/check.toml)") {
+    if (test::skip_without_assets()) return;
+    check::Suite suite = check::load_manifest(golden_manifest(), {});
+    std::erase_if(suite.scenes, [](const check::SceneEntry& e) { return !is_sample_model_scene(e); });
+    REQUIRE(!suite.scenes.empty());
+    for (check::SceneEntry& entry : suite.scenes) entry.scene = test::gltf_scenes_dir() / entry.scene.filename();
+    check_golden(suite.scenes, golden_report_dir("golden_report_gltf"));
 }
 
 // The golden thresholds themselves: what they let through and what they catch.

@@ -40,13 +40,9 @@ TEST_CASE("the tile size changes the schedule, not the picture") {
 // normal-map kernel wrote past its run into the next one). The narrowest and
 // the widest ISA (a sanitizer build renders slowly; the scalar path works
 // fragment by fragment and has its own tests).
-TEST_CASE("the tile size changes no scene's picture, with SIMD kernels") {
-    std::vector<std::filesystem::path> files = test::scene_files(test::source_dir() / "scenes");
-    if (std::filesystem::exists(test::assets_dir())) {
-        for (const auto& f : test::gltf_scene_files()) files.push_back(f);
-    } else {
-        MESSAGE("skipping scenes/gltf: " << test::assets_dir().string() << " is absent");
-    }
+namespace {
+
+void check_tile_sizes(const std::vector<std::filesystem::path>& files) {
     REQUIRE(!files.empty());
     std::vector<simd::Isa> isas = {simd::Isa::sse4};
     if (simd::best_supported_isa() != simd::Isa::sse4) isas.push_back(simd::best_supported_isa());
@@ -63,6 +59,18 @@ TEST_CASE("the tile size changes no scene's picture, with SIMD kernels") {
             CHECK(large.render(scene).radiance == reference.radiance);
         }
     }
+}
+
+}  // namespace
+
+TEST_CASE("the tile size changes no scene's picture, with SIMD kernels") {
+    check_tile_sizes(test::scene_files(test::source_dir() / "scenes"));
+}
+
+// The same for scenes/gltf/ with the sample models; Skipped without them.
+TEST_CASE("the tile size changes no sample-model scene's picture (scenes/gltf), with SIMD kernels") {
+    if (test::skip_without_assets()) return;
+    check_tile_sizes(test::gltf_scene_files());
 }
 
 TEST_CASE("every shading ISA renders the spheres scene within 1/255 of the scalar reference path") {

@@ -314,13 +314,10 @@ TEST_CASE("glTF import: a TOML scene places models next to built-in objects") {
     }
 }
 
-// The sample models, when ../shared/assets is there: each loads, with the counts its README gives.
+// The sample models (TESSERA_ASSETS_DIR; Skipped without them): each loads, with the counts its README gives.
 TEST_CASE("glTF import: the shared sample models") {
-    const fs::path assets = test::source_dir() / ".." / "shared" / "assets" / "gltf";
-    if (!fs::is_directory(assets)) {
-        MESSAGE("skipped: no sample models at " << assets.string());
-        return;
-    }
+    if (test::skip_without_assets()) return;
+    const fs::path assets = test::assets_dir() / "gltf";
     const auto triangles = [](const GltfContent& content) {
         std::size_t count = 0;
         for (const Object& object : content.objects) count += content.meshes[object.mesh].indices.size() / 3;
