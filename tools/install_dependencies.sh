@@ -14,12 +14,13 @@ packages=(
   libwebp-dev libavif-dev
   # Compressed glTF geometry: KHR_draco_mesh_compression and EXT_meshopt_compression.
   libdraco-dev libmeshoptimizer-dev
+  # Every build script compiles through ccache when it is there (tools/compiler_cache.sh), so
+  # a rebuild or a fresh clone of the same sources is mostly cache hits.
+  ccache
 )
 if [ "${1:-all}" != render ]; then
   packages+=(
     doctest-dev openimageio-tools libbenchmark-dev
-    # The build scripts compile through ccache when it is there (tools/compiler_cache.sh).
-    ccache
     # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
     libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
     # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
