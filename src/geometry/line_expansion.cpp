@@ -101,7 +101,10 @@ private:
         const glm::vec2 pa = glm::vec2(ca.clip) / ca.clip.w / pixel_to_ndc_, pb = glm::vec2(cb.clip) / cb.clip.w / pixel_to_ndc_;
         const glm::vec2 d = pb - pa;
         if (!(d.x != 0.0f || d.y != 0.0f)) return;  // zero length: no fragments
-        const glm::vec2 across = std::abs(d.x) >= std::abs(d.y) ? glm::vec2(0.0f, 0.5f) : glm::vec2(0.5f, 0.0f);
+        glm::vec2 across = std::abs(d.x) >= std::abs(d.y) ? glm::vec2(0.0f, 0.5f) : glm::vec2(0.5f, 0.0f);
+        // Wound counter-clockwise in the window (front-facing), so that the fragment stage never
+        // takes the quad's halves for back faces and flips their normals (double-sided shading).
+        if (across.x * d.y - across.y * d.x < 0.0f) across = -across;
         quad(ca, cb, across, false);
     }
 
@@ -138,7 +141,8 @@ void expand_points_and_lines(const Scene& scene, Scene& drawn) {
         Material material = scene.materials[object.material];
         material.double_sided = true;
         drawn.materials.push_back(material);
-        object = Object{std::uint32_t(drawn.meshes.size() - 1), std::uint32_t(drawn.materials.size() - 1), glm::mat4(1.0f)};
+        object = Object{std::uint32_t(drawn.meshes.size() - 1), std::uint32_t(drawn.materials.size() - 1), glm::mat4(1.0f),
+                        object.id};  // the object_id AOV stays the scene's
     }
 }
 

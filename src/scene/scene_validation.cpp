@@ -155,8 +155,10 @@ void validate_meshes(const Scene& scene) {
         }
         for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
             if (mesh.indices[i] >= vertices) {
-                fail(scene, mesh_label(scene, m), ": index ", mesh.indices[i], " at indices[", i,
-                     "] is out of range; the mesh has ", vertices, " vertices");
+                const std::size_t per = mesh.topology == Topology::triangles ? 3 : mesh.topology == Topology::lines ? 2 : 1;
+                const char* what = mesh.topology == Topology::triangles ? "triangle" : mesh.topology == Topology::lines ? "line" : "point";
+                fail(scene, mesh_label(scene, m), ": index ", mesh.indices[i], " at indices[", i, "] (", what, " ",
+                     i / per, ") is out of range; the mesh has ", vertices, " vertices");
             }
         }
     }

@@ -59,7 +59,7 @@ void add(Scene& scene, Topology topology, std::vector<glm::vec3> positions) {
 
 }  // namespace
 
-TEST_CASE("a point covers the one pixel whose centre is nearest; a line one pixel per step of its major axis") {
+TEST_CASE("a point covers the one pixel whose centre is nearest, a line one pixel per step of its major axis") {
     SUBCASE("a point at window (8.3, 8.2) lights pixel (8, row 7 from the top)") {
         Scene scene = pixel_grid_scene();
         add(scene, Topology::points, {{0.3f, 0.2f, 0.0f}});
@@ -98,7 +98,7 @@ TEST_CASE("a point covers the one pixel whose centre is nearest; a line one pixe
     }
 }
 
-TEST_CASE("lines are clipped at the near plane; points outside the view volume are dropped") {
+TEST_CASE("lines are clipped at the near plane, points outside the view volume are dropped") {
     Scene scene = pixel_grid_scene();
     scene.camera.projection = Projection::perspective;
     scene.camera.near_plane = 0.5f;

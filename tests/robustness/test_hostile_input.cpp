@@ -74,7 +74,7 @@ struct BudgetScope {
 
 }  // namespace
 
-TEST_CASE("hostile glTF: a URI inside the model's folder is read; one leaving it is refused, however spelled") {
+TEST_CASE("hostile glTF: a URI inside the model's folder is read, one leaving it is refused, however spelled") {
     const fs::path root = uri_root();
     const fs::path model = root / "model";
     CHECK(import_error(triangle_gltf("inside.bin"), model) == "");
@@ -94,7 +94,7 @@ TEST_CASE("hostile glTF: a URI inside the model's folder is read; one leaving it
     CHECK(import_error(triangle_gltf(kTriangleData), model) == "");
 }
 
-TEST_CASE("hostile glTF: a symbolic link out of the model's folder is refused; allowing external URIs reads it") {
+TEST_CASE("hostile glTF: a symbolic link out of the model's folder is refused, allowing external URIs reads it") {
     const fs::path root = uri_root();
     const fs::path link = root / "model" / "link.bin";
     fs::remove(link);
@@ -122,7 +122,7 @@ TEST_CASE("hostile glTF: nodes in a cycle, or with two parents, are refused thou
     CHECK(import_error(triangle_gltf(kTriangleData, "", "", R"([{"children": [1]}, {"mesh": 0}])"), dir) == "");
 }
 
-TEST_CASE("hostile glTF: GLB version 2 only; deep JSON and negative offsets are refused before parsing") {
+TEST_CASE("hostile glTF: GLB version 2 only, deep JSON and negative offsets are refused before parsing") {
     const fs::path dir = test::output_dir("hostile_gltf");
     const auto glb_error = [&](const std::vector<std::uint8_t>& bytes) -> std::string {
         try {

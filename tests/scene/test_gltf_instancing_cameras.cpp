@@ -96,7 +96,7 @@ TEST_CASE("orthographic cameras: glTF's matrix from xmag, ymag, znear, zfar, and
     CHECK(skipped.camera->camera.projection == Projection::orthographic);
 }
 
-TEST_CASE("points and lines primitives become point and line meshes; strips and loops line lists") {
+TEST_CASE("points and lines primitives become point and line meshes, strips and loops line lists") {
     const std::string text = test::points_and_lines_gltf();
     const GltfContent content = import_text(text);
     REQUIRE(content.meshes.size() == 4);

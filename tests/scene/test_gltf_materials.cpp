@@ -44,7 +44,7 @@ const std::string kTwoTextures = R"({"source": 0}, {"source": 0, "sampler": 0})"
 
 }  // namespace
 
-TEST_CASE("glTF texCoord: maps that agree are baked into the uvs; maps on two sets read two") {
+TEST_CASE("glTF texCoord: maps that agree are baked into the uvs, maps on two sets read two") {
     SUBCASE("every map on TEXCOORD_1: baked, one set") {
         const GltfContent c = import_text(test::quad_gltf(
             R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}}, "emissiveTexture": {"index": 1, "texCoord": 1}, "emissiveFactor": [1, 1, 1]})",
@@ -100,7 +100,7 @@ TEST_CASE("glTF texCoord: maps that agree are baked into the uvs; maps on two se
     }
 }
 
-TEST_CASE("glTF samplers: wrapS and wrapT apart, MIRRORED_REPEAT, the filters; bad enums refused") {
+TEST_CASE("glTF samplers: wrapS and wrapT apart, MIRRORED_REPEAT, the filters, bad enums refused") {
     const auto material = R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}})";
     const GltfContent c = import_text(test::quad_gltf(
         material, kTwoTextures, test::png_image(),

@@ -269,7 +269,7 @@ TEST_CASE("scene errors: structure") {
                     "test.toml:5:1: unknown key 'widht' in 'output'; valid keys: width, height, clear_color");
         CHECK_ERROR(with_camera("[[light]]\nposition = [1, 2, 3]\n"),
                     "test.toml:4:", "unknown key 'light' at top level",
-                    "valid keys: output, camera, lights, materials, objects");
+                    "valid keys: output, camera, lights, environment, materials, objects");
         CHECK_ERROR(with_camera("[[lights]]\nposition = [1, 2, 3]\ncolour = [1, 1, 1]\n"),
                     "test.toml:6:1: unknown key 'colour' in 'lights[0]'; valid keys: type, position, color, direction, "
                     "inner_cone, outer_cone, range");

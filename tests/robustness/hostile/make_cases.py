@@ -138,8 +138,13 @@ case("toml_deep_arrays", render("s.toml"), "nested deeper than 64 levels",
 case("toml_deep_inline_tables", render("s.toml"), "nested deeper than 64 levels",
      files={"s.toml": "x = " + "{a = " * 50000 + "1" + "}" * 50000 + "\n"})
 case("scene_fifo", render("s.toml"), "s.toml: cannot read scene file: it is a named pipe (FIFO)", fifos=["s.toml"])
-case("scene_dev_zero", render("/dev/zero"), "/dev/zero: cannot read scene file: it is a character device")
-case("scene_dev_urandom", render("/dev/urandom"), "/dev/urandom: cannot read scene file: it is a character device")
+# A device by its own name has no scene extension (refused as a usage error); behind a .toml name
+# it must still be refused before a byte is read.
+case("scene_dev_zero", render("/dev/zero"), "/dev/zero: not a scene file (expected .toml, .gltf or .glb)", status=2)
+case("scene_dev_zero_named_toml", render("zero.toml"), "zero.toml: cannot read scene file: it is a character device",
+     links={"zero.toml": "/dev/zero"})
+case("scene_dev_urandom_named_glb", render("random.glb"), "it is a character device",
+     links={"random.glb": "/dev/urandom"})
 case("scene_folder", render("d"), "d: cannot read scene file: it is a folder", files={"d/x": ""})
 case("scene_sparse_8g", render("s.toml"), "scene file of 8.0 GB is larger than", sparse={"s.toml": 8 << 30})
 case("log_fifo", render("s.toml", "--log", "log.fifo"), "log.fifo: cannot write the log: it is a named pipe",
