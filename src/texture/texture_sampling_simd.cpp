@@ -99,16 +99,20 @@ Texels<N> fetch(const TextureView& texture, const IntBatch& index) {
     return result;
 }
 
+// The four taps' texels of one level, weighted as GL_LINEAR weights them (x first, then y).
 template <int N>
-Texels<N> sample_bilinear(const TextureView& texture, const IntBatch& level, const Batch& u, const Batch& v, Wrap wrap) {
-    const LevelLanes l = level_lanes(texture, level);
-    const AxisTaps x = axis_taps(u, l.width, l.width_f, wrap);
-    const AxisTaps y = axis_taps(v, l.height, l.height_f, wrap);
+Texels<N> bilinear_from_taps(const TextureView& texture, const LevelLanes& l, const AxisTaps& x, const AxisTaps& y) {
     const IntBatch row0 = l.offset + y.i0 * l.width;
     const IntBatch row1 = l.offset + y.i1 * l.width;
     const Texels<N> top = lerp(fetch<N>(texture, row0 + x.i0), fetch<N>(texture, row0 + x.i1), x.alpha);
     const Texels<N> bottom = lerp(fetch<N>(texture, row1 + x.i0), fetch<N>(texture, row1 + x.i1), x.alpha);
     return lerp(top, bottom, y.alpha);
+}
+
+template <int N>
+Texels<N> sample_bilinear(const TextureView& texture, const IntBatch& level, const Batch& u, const Batch& v, Wrap wrap) {
+    const LevelLanes l = level_lanes(texture, level);
+    return bilinear_from_taps<N>(texture, l, axis_taps(u, l.width, l.width_f, wrap), axis_taps(v, l.height, l.height_f, wrap));
 }
 
 template <int N>
@@ -178,13 +182,8 @@ Texels<N> sample_level(const TextureView& texture, const Sampler& sampler, const
         const IntBatch y = nearest_tap(v, l.height, l.height_f, sampler.wrap_t);
         return fetch<N>(texture, l.offset + y * l.width + x);
     }
-    const AxisTaps x = general_axis_taps(u, l.width, l.width_f, sampler.wrap_s);
-    const AxisTaps y = general_axis_taps(v, l.height, l.height_f, sampler.wrap_t);
-    const IntBatch row0 = l.offset + y.i0 * l.width;
-    const IntBatch row1 = l.offset + y.i1 * l.width;
-    const Texels<N> top = lerp(fetch<N>(texture, row0 + x.i0), fetch<N>(texture, row0 + x.i1), x.alpha);
-    const Texels<N> bottom = lerp(fetch<N>(texture, row1 + x.i0), fetch<N>(texture, row1 + x.i1), x.alpha);
-    return lerp(top, bottom, y.alpha);
+    return bilinear_from_taps<N>(texture, l, general_axis_taps(u, l.width, l.width_f, sampler.wrap_s),
+                                 general_axis_taps(v, l.height, l.height_f, sampler.wrap_t));
 }
 
 // Lanes are magnified or minified each on their own (Texture::sample's
