@@ -111,9 +111,9 @@ TEST_CASE("glTF samplers: wrapS and wrapT apart, MIRRORED_REPEAT, the filters, b
     CHECK(slot.mag_filter == TextureFilter::nearest);
     CHECK(slot.min_filter == TextureFilter::nearest_mipmap_linear);
     // Absent: REPEAT, LINEAR, LINEAR_MIPMAP_LINEAR.
-    const TextureSlot& defaults = import_text(test::quad_gltf(material, kTwoTextures, test::png_image(), R"({})"))
-                                      .materials[0]
-                                      .albedo_map;
+    const TextureSlot defaults = import_text(test::quad_gltf(material, kTwoTextures, test::png_image(), R"({})"))
+                                     .materials[0]
+                                     .albedo_map;  // a copy: the imported content is a temporary
     CHECK(defaults.wrap_s == TextureWrap::repeat);
     CHECK(defaults.wrap_t == TextureWrap::repeat);
     CHECK(defaults.mag_filter == TextureFilter::linear);
