@@ -629,6 +629,8 @@ private:
     }
 
     bool uv_mapping_has_maps(int gltf_material) const {
+        // An index past the file's materials is refused by material_index, with its message.
+        if (gltf_material < 0 || std::size_t(gltf_material) >= model_.materials.size()) return false;
         const tinygltf::Material& m = model_.materials[std::size_t(gltf_material)];
         return m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
                m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
