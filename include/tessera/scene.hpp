@@ -213,8 +213,8 @@ struct Mesh {
     std::string name;
     Topology topology = Topology::triangles;
     std::vector<glm::vec3> positions;
-    // One per position. Points and lines may have none: glTF draws those unlit;
-    // here they are lit with a normal facing the camera (line_expansion.hpp).
+    // One per position. Points and lines may have none: glTF draws those unlit,
+    // and so does line_expansion.cpp (the material's unlit path).
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;            // empty, or one per position; (0, 0) = top-left of a texture
     std::vector<glm::vec2> uvs1;           // a second set (TextureSlot::uv_set 1): empty, or one per position

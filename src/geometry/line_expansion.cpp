@@ -140,6 +140,8 @@ void expand_points_and_lines(const Scene& scene, Scene& drawn) {
         drawn.meshes.push_back(expand_to_triangles(mesh, object.model, scene.camera, scene.width, scene.height));
         Material material = scene.materials[object.material];
         material.double_sided = true;
+        // glTF: points and lines without normals SHOULD be drawn unlit (base colour as shown).
+        if (mesh.normals.empty()) material.unlit = true;
         drawn.materials.push_back(material);
         object = Object{std::uint32_t(drawn.meshes.size() - 1), std::uint32_t(drawn.materials.size() - 1), glm::mat4(1.0f),
                         object.id};  // the object_id AOV stays the scene's

@@ -17,8 +17,8 @@
 //   Lines are clipped at the near and far planes first; a zero-length line draws
 //   nothing, as in GL.
 // - Normals: the mesh's, where it has them. Without (glTF's points and lines
-//   SHOULD then be drawn unlit, base colour + emissive), the normal faces the
-//   camera: the reference shader's light at normal view, no unlit path yet.
+//   SHOULD then be drawn unlit), the material is drawn unlit (Material::unlit:
+//   the base colour as the image shows it); the normal faces the camera.
 // - Materials are drawn double-sided (a line has no back).
 #pragma once
 
