@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "scene/gltf_import.hpp"
+#include "scene/gltf_text_import.hpp"
 #include "scene/gltf_test_files.hpp"
 
 using namespace tessera;
@@ -11,18 +12,10 @@ using namespace tessera;
 namespace {
 
 GltfContent import_text(const std::string& text, const std::string& name = "test.gltf") {
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
-    return import_gltf({bytes, text.size()}, name, "");
+    return test::import_gltf_text(text, name);
 }
 
-std::string error_of(const std::string& text) {
-    try {
-        import_text(text, "bad.gltf");
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "(accepted)";
-}
+std::string error_of(const std::string& text) { return test::gltf_import_error(text); }
 
 // The test document with these extension lists instead of its own.
 std::string with_extensions(const std::string& used, const std::string& required) {

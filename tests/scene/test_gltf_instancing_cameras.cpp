@@ -10,24 +10,17 @@
 
 #include "scene/gltf_geometry_files.hpp"
 #include "scene/gltf_import.hpp"
+#include "scene/gltf_text_import.hpp"
 
 using namespace tessera;
 
 namespace {
 
 GltfContent import_text(const std::string& text, const std::string& name = "test.gltf") {
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
-    return import_gltf({bytes, text.size()}, name, "");
+    return test::import_gltf_text(text, name);
 }
 
-std::string error_of(const std::string& text) {
-    try {
-        import_text(text, "bad.gltf");
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "(accepted)";
-}
+std::string error_of(const std::string& text) { return test::gltf_import_error(text); }
 
 bool near(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f) { return glm::length(a - b) <= tolerance; }
 

@@ -13,6 +13,7 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "scene/gltf_import.hpp"
+#include "scene/gltf_text_import.hpp"
 #include "scene/gltf_material_files.hpp"
 #include "test_paths.hpp"
 #include "texture/texture.hpp"
@@ -23,17 +24,11 @@ using namespace tessera;
 namespace {
 
 GltfContent import_text(const std::string& text, const std::filesystem::path& base_dir = "") {
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(text.data());
-    return import_gltf({bytes, text.size()}, "quad.gltf", base_dir);
+    return test::import_gltf_text(text, "quad.gltf", base_dir);
 }
 
 std::string error_of(const std::string& text, const std::filesystem::path& base_dir = "") {
-    try {
-        import_text(text, base_dir);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "(accepted)";
+    return test::gltf_import_error(text, "quad.gltf", base_dir);
 }
 
 std::vector<glm::vec2> uvs_of(const float (&values)[8]) {
