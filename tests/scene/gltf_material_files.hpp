@@ -17,13 +17,7 @@ inline constexpr float kQuadUv1[] = {0, 0, 0.5f, 0, 0.5f, 0.5f, 0, 0.5f};  // TE
 
 inline std::vector<std::uint8_t> quad_buffer() {
     std::vector<std::uint8_t> bytes;
-    const auto floats = [&bytes](std::initializer_list<float> values) {
-        for (const float v : values) {
-            std::uint8_t b[4];
-            std::memcpy(b, &v, 4);
-            bytes.insert(bytes.end(), b, b + 4);
-        }
-    };
+    const auto floats = [&bytes](std::initializer_list<float> values) { append_floats(bytes, values); };
     floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0});  // 0: positions
     floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1});      // 48: normals
     for (const float f : kQuadUv0) floats({f});        // 96: TEXCOORD_0

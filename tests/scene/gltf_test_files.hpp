@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,16 +34,19 @@ inline std::string base64(const std::vector<std::uint8_t>& bytes) {
 inline constexpr std::string_view kTestPngBase64 =
     "iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAIAAAD91JpzAAAAEklEQVR4nGP4z8DAAMIM/4EAAB/uBfsL2WiLAAAAAElFTkSuQmCC";
 
+// Appends the floats' bytes (little-endian, as glTF buffers hold them on this machine).
+inline void append_floats(std::vector<std::uint8_t>& bytes, std::initializer_list<float> values) {
+    for (const float v : values) {
+        std::uint8_t b[4];
+        std::memcpy(b, &v, 4);
+        bytes.insert(bytes.end(), b, b + 4);
+    }
+}
+
 // The test document's binary buffer (180 bytes), laid out as its buffer views say.
 inline std::vector<std::uint8_t> test_gltf_buffer() {
     std::vector<std::uint8_t> bytes;
-    const auto floats = [&bytes](std::initializer_list<float> values) {
-        for (const float v : values) {
-            std::uint8_t b[4];
-            std::memcpy(b, &v, 4);
-            bytes.insert(bytes.end(), b, b + 4);
-        }
-    };
+    const auto floats = [&bytes](std::initializer_list<float> values) { append_floats(bytes, values); };
     floats({0, 0, 0, 1, 0, 0, 0, 1, 0});  // 0: triangle positions
     floats({0, 0, 1, 0, 0, 1, 0, 0, 1});  // 36: its normals
     floats({0, 0, 1, 0, 0, 1});           // 72: its uvs
