@@ -3,7 +3,7 @@
 # instrumentation and AddressSanitizer + UndefinedBehaviorSanitizer
 # (-fsanitize=fuzzer-no-link,...) so the fuzzers see inside the whole
 # pipeline; only the fuzzer executables link libFuzzer's main.
-# tools/fuzz.sh builds them in build-fuzz/ and runs each for a bounded time.
+# tools/ci/fuzz.sh builds them in build-fuzz/ and runs each for a bounded time.
 option(TESSERA_BUILD_FUZZERS "Build the libFuzzer targets in tests/fuzz (needs clang)" OFF)
 
 if(TESSERA_BUILD_FUZZERS)

@@ -17,7 +17,7 @@ set(TESSERA_SIMD_ARCH_sse4 "xsimd::sse4_2")
 set(TESSERA_SIMD_ARCH_avx2 "xsimd::fma3<xsimd::avx2>")
 set(TESSERA_SIMD_ARCH_avx512 "xsimd::avx512bw")
 
-# A test build for machines without AVX-512 (cf. tools/check_avx512_emulated.sh):
+# A test build for machines without AVX-512 (cf. tools/ci/check_avx512_emulated.sh):
 # the avx512 copies are compiled for x86-64-v3 with SIMDe's portable AVX-512
 # intrinsics (src/simd/avx512_emulation.hpp), and the run-time ISA detection
 # reports avx512 as available, so the every-ISA tests run those copies too.

@@ -10,7 +10,13 @@
 
 namespace tessera::test {
 
-inline std::filesystem::path source_dir() { return TESSERA_SOURCE_DIR; }
+// The checkout, the build tree, TESSERA_ASSETS_DIR and the sample-model scenes, as CMake
+// configured them: defined in test_paths.cpp alone, so that no other test file's compile
+// command names an absolute path (a compiler-cache hit across clones and worktrees).
+std::filesystem::path source_dir();
+std::filesystem::path binary_dir();
+std::filesystem::path configured_assets_dir();
+std::filesystem::path configured_gltf_scenes_dir();
 inline std::filesystem::path scene_path(const char* name) { return source_dir() / "scenes" / name; }
 // Every scene file in scenes/, sorted by name.
 inline std::vector<std::filesystem::path> scene_files(const std::filesystem::path& folder = source_dir() / "scenes") {
@@ -25,7 +31,7 @@ inline std::vector<std::filesystem::path> scene_files(const std::filesystem::pat
 // in for it (tests/assets_skip_test.sh points it to an empty folder).
 inline std::filesystem::path assets_dir() {
     if (const char* dir = std::getenv("TESSERA_ASSETS_DIR"); dir && *dir) return dir;
-    return TESSERA_ASSETS_DIR;
+    return configured_assets_dir();
 }
 // A test case that needs the sample models starts with `if (test::skip_without_assets()) return;`:
 // where there are none it prints the line that ctest's SKIP_REGULAR_EXPRESSION
@@ -38,11 +44,11 @@ inline bool skip_without_assets() {
 }
 // Scenes rendering the sample models: scenes/gltf/<name>.toml (golden/gltf/<name>.png), or, when
 // TESSERA_ASSETS_DIR is not ../shared/assets, copies of them in the build tree naming it.
-inline std::filesystem::path gltf_scenes_dir() { return TESSERA_GLTF_SCENES_DIR; }
+inline std::filesystem::path gltf_scenes_dir() { return configured_gltf_scenes_dir(); }
 inline std::vector<std::filesystem::path> gltf_scene_files() { return scene_files(gltf_scenes_dir()); }
 // A folder in the build tree for files the tests write.
 inline std::filesystem::path output_dir(const char* name) {
-    const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "test_output" / name;
+    const std::filesystem::path dir = binary_dir() / "test_output" / name;
     std::filesystem::create_directories(dir);
     return dir;
 }

@@ -23,16 +23,16 @@ if [ "${1:-all}" != render ]; then
     doctest-dev openimageio-tools libbenchmark-dev
     # The OpenGL peer renderer (tools/gl_reference): glvnd's GL/EGL, Mesa's llvmpipe.
     libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
-    # The libFuzzer targets (tools/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
+    # The libFuzzer targets (tools/ci/fuzz.sh): clang and its runtime (-fsanitize=fuzzer).
     clang libclang-rt-14-dev
-    # The fresh-machine check (tools/fresh_machine_check.sh): minimal Debian 12 roots.
+    # The fresh-machine check (tools/ci/fresh_machine_check.sh): minimal Debian 12 roots.
     mmdebstrap
     # The one-node Slurm cluster of tools/slurm/check_cluster.sh (python3 picks free ports, procps' pgrep
     # finds what the daemons started).
     slurmctld slurmd slurm-client munge python3 procps
     # tessera check's report tested in a real browser (tests/check/report_browser_test.py).
     chromium python3
-    # The AVX-512 kernels run emulated on CPUs without AVX-512 (tools/check_avx512_emulated.sh).
+    # The AVX-512 kernels run emulated on CPUs without AVX-512 (tools/ci/check_avx512_emulated.sh).
     libsimde-dev
     # The Python module (src/python, TESSERA_BUILD_PYTHON) and its pytest suite (tests/python);
     # pip, setuptools, wheel and venv for `pip install --no-build-isolation ./python`.

@@ -276,7 +276,7 @@ struct Scene {
     int height = 720;
     glm::vec3 clear_color{0.1f, 0.1f, 0.1f};  // display-referred, as glClearColor
     // Samples per pixel: 1, or 4 for 4× MSAA (GL's sample pattern, shading
-    // once per pixel and triangle; see src/raster/msaa.hpp). A property of the
+    // once per pixel and triangle; see src/raster/msaa/msaa.hpp). A property of the
     // output like its size, so it lives here; the CLI's --msaa overrides it.
     int msaa = 1;
     Camera camera;
@@ -309,7 +309,7 @@ public:
 };
 
 // Reads and validates a TOML scene file, or a .gltf/.glb file as a whole scene
-// (src/scene/gltf_import.hpp); throws SceneError. gltf_camera (the CLI's
+// (src/scene/gltf/gltf_import.hpp); throws SceneError. gltf_camera (the CLI's
 // --camera NAME|INDEX) picks a glTF file's camera; a TOML file refuses it.
 Scene load_scene_file(const std::filesystem::path& path, const std::string& gltf_camera = "");
 // The same from text in memory; source_name stands for the file in messages.

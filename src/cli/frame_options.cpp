@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "environment/environment_cache.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "cli/usage.hpp"
 #include "tessera/scene.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <sys/resource.h>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "texture/texture.hpp"
 
 namespace tessera::cli {

@@ -28,7 +28,7 @@
 #include "cli/usage.hpp"
 #include "cli/tools_exec.hpp"
 #include "io/memory_budget.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/model_cache.hpp"
 #include "scene/scene_validation.hpp"
 #include "tessera/animation.hpp"

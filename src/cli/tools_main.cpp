@@ -13,7 +13,7 @@
 #include "cli/contact_sheet_command.hpp"
 #include "cli/frame_options.hpp"
 #include "io/memory_budget.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "cli/usage.hpp"
 
 int main(int argc, char** argv) {

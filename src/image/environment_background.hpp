@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "image/blend.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/ibl_reference.hpp"
 #include "tessera/renderer.hpp"

@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "image/display_encoding.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/shade_kernels.hpp"
 #include "tessera/renderer.hpp"

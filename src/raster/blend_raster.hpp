@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 
 namespace tessera::raster {

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "raster/msaa_pattern.hpp"
+#include "raster/msaa/msaa_pattern.hpp"
 #include "raster/raster_limits.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "raster/triangle_setup.hpp"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/raster_limits.hpp"
 
 namespace tessera::raster {

@@ -49,7 +49,7 @@ inline bool culled(Culling culling, std::int64_t double_area) {
 // Makes a RasterTriangle of three screen vertices, or nothing when the
 // triangle has no area, is culled, or covers no pixel centre. Corners 1 and 2 are swapped where needed
 // so that the edge functions are positive inside (clockwise as seen on screen).
-// With samples = 4 (raster/msaa.hpp) the test and the pixel box are about the
+// With samples = 4 (raster/msaa/msaa.hpp) the test and the pixel box are about the
 // pixels' sample positions instead of their centres. mirrored: the object's
 // model matrix has a negative determinant, which swaps front and back
 // (RasterTriangle::back_facing).

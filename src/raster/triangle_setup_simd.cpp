@@ -16,7 +16,7 @@
 #include "simd/transpose.hpp"
 
 #include "geometry/clipper.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/raster_kernels.hpp"
 #include "raster/raster_limits.hpp"
 
@@ -195,7 +195,7 @@ void setup_batch(const SetupBatchInput& in, SetupBatchOutput& out) {
     // integers: a mask made from a bool (Mask(true)) misbehaved with AVX-512's mask registers.
     const Int back_if_swapped(in.mirrored ? 1 : 0), back_if_kept(in.mirrored ? 0 : 1);
     // The points a pixel is tested at: its centre, or its 4 samples
-    // (raster/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
+    // (raster/msaa/msaa.hpp), which lie 1/8 to 7/8 of a pixel from its corner: the
     // box holds the pixels with a point between the triangle's extremes.
     constexpr bool msaa = kMsaa;
     constexpr int point_count = msaa ? kMsaaSamples : 1;

@@ -11,7 +11,7 @@
 #include <mutex>
 #include <string>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 
 namespace tessera {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "scene/animation_eval.hpp"
-#include "scene/gltf_animation.hpp"
+#include "scene/gltf/gltf_animation.hpp"
 #include "tessera/animation.hpp"
 
 namespace tessera {

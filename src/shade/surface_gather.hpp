@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "geometry/shaded_vertex.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "shade/shade_kernels.hpp"
 #include "tessera/scene.hpp"
@@ -187,7 +187,7 @@ std::size_t gather_surface_points(const raster::TileBuffers& tile, int width, in
                                   FragmentBuffer& out, std::vector<MaterialRun>& runs);
 
 // The same for a 4×-multisampled tile: one fragment per entry of `fragments`
-// (raster/msaa.hpp), at its own λ1 λ2; derivatives as above, from its pixel.
+// (raster/msaa/msaa.hpp), at its own λ1 λ2; derivatives as above, from its pixel.
 template <class Lookup>
 std::size_t gather_surface_points(const raster::TileFragments& fragments, Lookup&& lookup, FragmentBuffer& out,
                                   std::vector<MaterialRun>& runs);

@@ -2,7 +2,7 @@
 // only where the target has PRFCHW, which no -march we build for names, so it
 // becomes a plain prefetcht0 there: a line another core holds then arrives
 // shared, and the store that follows must wait for the other copy to go too
-// (machine/handover in tools/microbench). prefetchw asks for the line
+// (machine/handover in tools/bench/microbench). prefetchw asks for the line
 // exclusive at once. Every x86-64 CPU since AMD K8 and Intel Broadwell runs
 // it; older Intel ones decode it as a no-op.
 #pragma once

@@ -2,7 +2,7 @@
 // variant"): an image with its full mip chain and OpenGL's sampling rules,
 // GL_LINEAR magnification and GL_LINEAR_MIPMAP_LINEAR minification, with
 // GL_REPEAT or GL_CLAMP_TO_EDGE wrapping. The scalar samplers are the reference
-// (texture.cpp); sample_trilinear(Isa, ...) runs the same arithmetic over
+// (texture_sampling.cpp); sample_trilinear(Isa, ...) runs the same arithmetic over
 // batches of fragments (texture_sampling_simd.cpp, one copy per ISA).
 //
 // Storage: 8 bits per channel, RGBA interleaved in one 32-bit word per texel
@@ -199,7 +199,7 @@ public:
 
 private:
     Texture() = default;
-    friend struct ImageDecoder;  // texture.cpp: decodes an image file into level 0
+    friend struct ImageDecoder;  // texture_load.cpp: decodes an image file into level 0
     // Sizes every level and allocates the texels; level 0 is then filled. Throws
     // io::MemoryBudgetError when every live texture with this one would pass the budget.
     void allocate(int width, int height, ColorSpace color_space);
@@ -209,7 +209,7 @@ private:
     ColorSpace color_space_ = ColorSpace::linear;
     // All levels, RGBA8. Not a std::vector: its zero fill cost a memset of
     // 22 MB per 2048² map before the decoder and the mip filter wrote every
-    // texel. Maps of 2 MiB and more are in transparent huge pages (texture.cpp).
+    // texel. Maps of 2 MiB and more are in transparent huge pages (texture.cpp: allocate).
     // It gives the bytes back to the process's count of live texels, which
     // allocate checks against the memory budget (io/memory_budget.hpp).
     struct FreeTexels {

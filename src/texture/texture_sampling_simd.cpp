@@ -1,4 +1,4 @@
-// Texture::sample_trilinear (texture.cpp) over xsimd batches: one fragment per
+// Texture::sample_trilinear (texture_sampling.cpp) over xsimd batches: one fragment per
 // lane, each lane with its own level pair, so the per-level sizes and offsets
 // are gathered from the TextureView tables, and the RGBA8 texel words by
 // simd::hardware_gather (vpgatherdd on AVX2/AVX-512, lane by lane on SSE4.2).
@@ -71,7 +71,7 @@ struct AxisTaps {
     Batch alpha;
 };
 
-// axis_taps of texture.cpp: x = coord·size − ½, i0 = wrap(⌊x⌋), i1 = wrap(⌊x⌋ + 1), α = frac(x).
+// axis_taps of texture_sampling.cpp: x = coord·size − ½, i0 = wrap(⌊x⌋), i1 = wrap(⌊x⌋ + 1), α = frac(x).
 AxisTaps axis_taps(Batch coord, const IntBatch& size, const Batch& size_f, Wrap wrap) {
     if (wrap == Wrap::repeat) coord -= xsimd::floor(coord);
     const Batch x = clamp_nan_low(coord * size_f - Batch(0.5f), Batch(-1.0f), size_f);
@@ -136,11 +136,11 @@ void sample_trilinear_batch(const TextureView& texture, Wrap wrap, const TexCoor
 }
 
 // ---- The general sampler (Texture::sample): wrap per axis, GL_MIRRORED_REPEAT,
-// every filter. The same steps as texture.cpp's axis_taps, nearest_tap and
+// every filter. The same steps as texture_sampling.cpp's axis_taps, nearest_tap and
 // Texture::sample; the choices are uniform over a call, so they branch once
 // per vector, not per lane.
 
-// mirror_fold of texture.cpp: i in [−1, 2·size] onto the mirrored pattern's texel.
+// mirror_fold of texture_sampling.cpp: i in [−1, 2·size] onto the mirrored pattern's texel.
 IntBatch mirror_fold(IntBatch i, const IntBatch& size) {
     const IntBatch period = size + size;
     i = xsimd::select(i < IntBatch(0), i + period, i);
@@ -237,7 +237,7 @@ void sample_general_batch(const TextureView& texture, const Sampler& sampler, co
 
 }  // namespace
 
-// Entry points, declared in texture.cpp.
+// Entry points, declared in texture_sampling.cpp.
 void TESSERA_SIMD_ENTRY(lod_from_derivatives)(const DerivativeInputs& in, int width, int height, float* lod) {
     const Batch w(static_cast<float>(width)), h(static_cast<float>(height));
     const std::size_t end = padded_count(in.count);

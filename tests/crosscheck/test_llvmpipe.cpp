@@ -19,7 +19,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_renderer.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "tessera/image_io.hpp"
 #include "tessera/renderer.hpp"
 #include "tessera/scene.hpp"
@@ -115,7 +115,7 @@ std::string describe(const Agreement& a) {
 // Both images and their difference (x16, so small differences show) for a look by eye.
 std::string write_failure_images(const RenderedImage& tessera_image, const RenderedImage& gl_image,
                                  const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "crosscheck_failures";
+    const std::filesystem::path dir = tessera::test::binary_dir() / "crosscheck_failures";
     std::filesystem::create_directories(dir);
     RenderedImage diff;
     diff.width = gl_image.width;
@@ -265,7 +265,7 @@ TEST_CASE("crosscheck: a scene without lights renders ambient only in both") {
 // Measured on llvmpipe (Mesa 22.3.6):
 // - GL_SAMPLE_POSITION reports (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875)
 //   in window space, y up from the pixel's bottom (thin quads on a 1×1 FBO confirm it);
-//   Tessera uses these positions (src/raster/msaa.hpp).
+//   Tessera uses these positions (src/raster/msaa/msaa.hpp).
 // - Fragments are shaded at the pixel centre, extrapolated where the triangle misses it
 //   (the reference GLSL has no `centroid`); Tessera does the same.
 // - The resolve averages in float and rounds ties (the four 8-bit values summing to

@@ -10,7 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/scene_validation.hpp"
 #include "tessera/animation.hpp"
 #include "tessera/renderer.hpp"

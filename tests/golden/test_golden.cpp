@@ -12,10 +12,10 @@ using namespace tessera;
 
 namespace {
 
-std::filesystem::path golden_manifest() { return test::source_dir() / "tests" / "golden" / "check.toml"; }
+std::filesystem::path golden_manifest() { return tessera::test::source_dir() / "tests" / "golden" / "check.toml"; }
 
 // The reports of the golden suite: kept in the build tree, where CI picks them up when a run fails.
-std::filesystem::path golden_report_dir(const char* name) { return std::filesystem::path(TESSERA_BINARY_DIR) / name; }
+std::filesystem::path golden_report_dir(const char* name) { return tessera::test::binary_dir() / name; }
 
 bool is_sample_model_scene(const check::SceneEntry& entry) { return entry.name.starts_with("gltf/"); }
 
@@ -68,7 +68,7 @@ TEST_CASE("golden thresholds: a few pixels a few steps off pass, more or further
     settings.keep_radiance = false;
     Renderer renderer(settings);
     const RenderedImage rendered = renderer.render(load_scene_file(spheres->scene));
-    const OIIO::ImageBuf golden = check::read_golden(test::source_dir() / "golden" / "spheres.png");
+    const OIIO::ImageBuf golden = check::read_golden(tessera::test::source_dir() / "golden" / "spheres.png");
     const auto shifted = [&](int pixels, int steps) {
         RenderedImage image = rendered;
         for (int p = 0; p < pixels; ++p) {

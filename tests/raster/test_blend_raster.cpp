@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "raster/blend_raster.hpp"
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster/tile_rasterizer.hpp"
 
 using namespace tessera;

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "raster/msaa_bin.hpp"
+#include "raster/msaa/msaa_bin.hpp"
 #include "raster_test_util.hpp"
 
 using namespace tessera;

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <random>
 
-#include "raster/msaa.hpp"
+#include "raster/msaa/msaa.hpp"
 #include "raster_test_util.hpp"
 
 using namespace tessera;

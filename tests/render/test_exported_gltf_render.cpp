@@ -10,7 +10,7 @@
 #include <limits>
 #include <string>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "tessera/renderer.hpp"
 #include "test_paths.hpp"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "io/memory_budget.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "tessera/scene.hpp"
 #include "test_paths.hpp"
 #include "texture/texture.hpp"

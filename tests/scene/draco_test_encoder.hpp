@@ -1,5 +1,5 @@
 // Draco encoding for the tests' small models, in a shared library of its own
-// for the reason src/scene/draco_codec.hpp gives (libdraco carries a tinygltf).
+// for the reason src/scene/gltf/draco_codec.hpp gives (libdraco carries a tinygltf).
 #pragma once
 
 #include <cstddef>

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 
 namespace tessera::test {
 

@@ -13,9 +13,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tiny_gltf.h>
 
-#include "scene/gltf_animation.hpp"
+#include "scene/gltf/gltf_animation.hpp"
 #include "scene/gltf_animation_files.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "tessera/animation.hpp"
 #include "test_paths.hpp"
 

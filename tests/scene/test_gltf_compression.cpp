@@ -10,10 +10,10 @@
 #include <doctest/doctest.h>
 #include <tiny_gltf.h>
 
-#include "scene/gltf_accessors.hpp"
+#include "scene/gltf/gltf_accessors.hpp"
 #include "scene/gltf_compressed_files.hpp"
-#include "scene/gltf_compression.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_compression.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "test_paths.hpp"
 
 using namespace tessera;
@@ -405,7 +405,7 @@ MeshSummary summary(const GltfContent& content) {
 }  // namespace
 
 TEST_CASE("real exporters' compressed files: BoomBox's geometry from gltfpack -c (meshopt) and gltf-pipeline -d (Draco)") {
-    const std::filesystem::path models = std::filesystem::path(TESSERA_SOURCE_DIR) / "tests" / "scene" / "models";
+    const std::filesystem::path models = tessera::test::source_dir() / "tests" / "scene" / "models";
     // gltfpack drops the uvs and tangents of a material without textures (and merges the
     // vertices that then coincide); gltf-pipeline keeps every attribute.
     for (const std::string name : {"BoomBox_geometry_meshopt.glb", "BoomBox_geometry_draco.glb"}) {
@@ -427,7 +427,7 @@ TEST_CASE("real exporters' compressed files: BoomBox's geometry from gltfpack -c
 // The same files against the uncompressed original in the sample models (Skipped without them).
 TEST_CASE("real exporters' compressed files: the geometry of BoomBox.gltf from the sample models, within quantization") {
     if (test::skip_without_assets()) return;
-    const std::filesystem::path models = std::filesystem::path(TESSERA_SOURCE_DIR) / "tests" / "scene" / "models";
+    const std::filesystem::path models = tessera::test::source_dir() / "tests" / "scene" / "models";
     const MeshSummary want = summary(import_gltf_file(test::assets_dir() / "gltf" / "BoomBox" / "BoomBox.gltf"));
     for (const std::string name : {"BoomBox_geometry_meshopt.glb", "BoomBox_geometry_draco.glb"}) {
         CAPTURE(name);

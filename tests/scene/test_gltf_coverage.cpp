@@ -3,7 +3,7 @@
 // document of gltf_test_files.hpp.
 #include <doctest/doctest.h>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/gltf_text_import.hpp"
 #include "scene/gltf_test_files.hpp"
 

@@ -1,4 +1,4 @@
-// glTF import (src/scene/gltf_import.hpp): the test document of
+// glTF import (src/scene/gltf/gltf_import.hpp): the test document of
 // gltf_test_files.hpp read as .gltf, .glb and with an external buffer, every
 // mapping checked against numbers worked out by hand; then the real sample
 // models in ../shared/assets when that folder exists.
@@ -9,7 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/framing.hpp"
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/gltf_test_files.hpp"
 #include "test_paths.hpp"
 #include "texture/texture.hpp"

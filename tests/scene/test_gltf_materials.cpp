@@ -12,7 +12,7 @@
 #include <doctest/doctest.h>
 #include <OpenImageIO/imagebuf.h>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/gltf_text_import.hpp"
 #include "scene/gltf_material_files.hpp"
 #include "test_paths.hpp"

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <limits>
 
-#include "scene/gltf_import.hpp"
+#include "scene/gltf/gltf_import.hpp"
 #include "scene/gltf_test_files.hpp"
 
 using namespace tessera;

@@ -11,13 +11,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "tessera/scene.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using tessera::Scene;
 using tessera::SceneError;
 
-const std::filesystem::path kSourceDir{TESSERA_SOURCE_DIR};
+const std::filesystem::path kSourceDir{tessera::test::source_dir()};
 
 // A camera that passes validation; tests append what they are about (lines 1-3).
 constexpr std::string_view kCamera =
@@ -397,7 +398,7 @@ TEST_CASE("scene errors: values") {
 }
 
 TEST_CASE("textured.toml: one shared rust material, maps loaded once, factors 1") {
-    const std::filesystem::path path = std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes" / "textured.toml";
+    const std::filesystem::path path = tessera::test::source_dir() / "scenes" / "textured.toml";
     const tessera::Scene scene = tessera::load_scene_file(path);
     REQUIRE(scene.materials.size() == 1);
     CHECK(scene.objects.size() == 49);

@@ -29,7 +29,7 @@ namespace {
 using namespace tessera::texture;
 
 std::filesystem::path decoder_dir() {
-    const std::filesystem::path dir = std::filesystem::path(TESSERA_BINARY_DIR) / "test_output" / "image_decoders";
+    const std::filesystem::path dir = tessera::test::binary_dir() / "test_output" / "image_decoders";
     std::filesystem::create_directories(dir);
     return dir;
 }

@@ -7,7 +7,7 @@ Checks, for README.md and every docs/**/*.md:
   (GitHub's rule: lower case, punctuation dropped, spaces to hyphens, -1, -2 for repeats);
 - README.md is at most 300 lines;
 - the README's quick start is the first ```sh block under "## Quick start" and holds exactly
-  the two commands tools/fresh_machine_check.sh runs.
+  the two commands tools/ci/fresh_machine_check.sh runs.
 usage: test_docs_links.py SOURCE_DIR
 """
 import pathlib
@@ -109,7 +109,7 @@ def main():
     commands = quick_start_commands(text)
     if commands != ["bash tools/quickstart.sh", "bash tools/test.sh"]:
         errors.append(f"README.md: the quick start's commands are {commands}, "
-                      "expected ['bash tools/quickstart.sh', 'bash tools/test.sh'] (tools/fresh_machine_check.sh)")
+                      "expected ['bash tools/quickstart.sh', 'bash tools/test.sh'] (tools/ci/fresh_machine_check.sh)")
     for error in errors:
         print("FAIL", error)
     print(f"{len(pages)} pages checked, README.md {lines} lines, {len(errors)} problems")

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# tools/fresh_machine_check.sh refuses clearly, with exit status 2, where it cannot run:
+# tools/ci/fresh_machine_check.sh refuses clearly, with exit status 2, where it cannot run:
 # without root, and without a network to the package registry. (Its real run, both
 # quick-start commands on new Debian 12 roots, is a step of .ci/run: minutes, not a unit test.)
 # Exit 77 (ctest's skip) when this machine cannot set up a case.
 set -uo pipefail
-script="$1/tools/fresh_machine_check.sh"
+script="$1/tools/ci/fresh_machine_check.sh"
 checked=0
 
 expect_refusal() {  # NAME EXPECTED_TEXT COMMAND...

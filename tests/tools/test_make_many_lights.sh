@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/make_many_lights.py: the committed scene is what it writes; --range R gives
+# tools/bench/make_many_lights.py: the committed scene is what it writes; --range R gives
 # every light that explicit range, and the scene renders; bad arguments are refused
 # with a message naming them and a non-zero exit.
 #   test_make_many_lights.sh SOURCE_DIR TESSERA_BINARY
@@ -8,7 +8,7 @@ src="$1"
 tessera="$2"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-script="$src/tools/make_many_lights.py"
+script="$src/tools/bench/make_many_lights.py"
 
 python3 "$script" 256 | cmp - "$src/scenes/many_lights.toml"  # edit the script, not the scene
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/scaling_model.py on a real trace: a 1-thread `tessera bench --trace` of the demo scene at
+# tools/bench/scaling_model.py on a real trace: a 1-thread `tessera bench --trace` of the demo scene at
 # a small size. The model's 1-core frame must be the sum of the passes' work, more cores must
 # never make a pass slower than its longest task allows, and it must name a pass.
 #   test_scaling_model.sh SOURCE_DIR TESSERA_BINARY
@@ -10,7 +10,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 "$tessera" bench "$src/scenes/spheres.toml" --width 320 --height 180 --threads 1 --frames 3 --warmup 0 \
   --tile-size 32 --trace "$work/t.json" >/dev/null
-python3 "$src/tools/scaling_model.py" "$work/t.json" --cores 1,2,64 >"$work/model.txt"
+python3 "$src/tools/bench/scaling_model.py" "$work/t.json" --cores 1,2,64 >"$work/model.txt"
 cat "$work/model.txt"
 python3 - "$work/model.txt" <<'PY'
 import re, sys

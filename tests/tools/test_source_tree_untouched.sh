@@ -4,7 +4,7 @@
 # tree, where generated files used to hide (scenes/textures/ once did), and
 # fails on anything but the build folders and what a person's own commands write
 # there (.gitignore: spheres.png of the quick start, check-report/, .ci/artifacts/).
-# tools/fresh_machine_check.sh checks a fresh clone's whole `git status` after
+# tools/ci/fresh_machine_check.sh checks a fresh clone's whole `git status` after
 # building.
 #   test_source_tree_untouched.sh SOURCE_DIR BUILD_DIR     (exit 77: not a git checkout)
 set -euo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/stage_limits.py on a real bench of the demo scene and a machine file with known peaks:
+# tools/bench/stage_limits.py on a real bench of the demo scene and a machine file with known peaks:
 # the shade row's share of the FP issue peak and the resolve row's bytes must be what the
 # bench's own counts give by the script's stated model, and every stage must have its row.
 #   test_stage_limits.sh SOURCE_DIR TESSERA_BINARY
@@ -31,7 +31,7 @@ for kind in ("read", "write", "copy"):
 rows.append({"name": "machine/handover/other_core/manual_time", "run_type": "iteration", "bytes_per_second": 1e9})
 json.dump({"benchmarks": rows}, open(sys.argv[1], "w"))
 PY
-python3 "$src/tools/stage_limits.py" --machine "$work/machine.json" --bench-json "$work/bench.json" \
+python3 "$src/tools/bench/stage_limits.py" --machine "$work/machine.json" --bench-json "$work/bench.json" \
   --ops-per-fragment-light 50 >"$work/limits.txt"
 cat "$work/limits.txt"
 python3 - "$work/bench.json" "$work/limits.txt" <<'PY'

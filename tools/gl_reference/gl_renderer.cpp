@@ -20,7 +20,7 @@ namespace tessera::gl_reference {
 
 namespace {
 
-// The only multisample count Tessera has (src/raster/msaa.hpp: kMsaaSamples).
+// The only multisample count Tessera has (src/raster/msaa/msaa.hpp: kMsaaSamples).
 constexpr int kMsaaSamples = 4;
 
 // The reference vertex shader of pbr_lighting.md, verbatim but for the normal: the

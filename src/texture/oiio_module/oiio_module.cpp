@@ -1,6 +1,6 @@
 // The OpenImageIO module (oiio_module_abi.hpp): texture files in the formats
 // tessera does not decode itself (TGA, TIFF, EXR, HDR, BMP, ...), read with
-// OpenImageIO exactly as texture.cpp read every file before.
+// OpenImageIO exactly as texture_load.cpp read every file before.
 #include <algorithm>
 #include <cstdio>
 #include <memory>

@@ -26,7 +26,7 @@ AS_CAP = 2 << 30        # bytes of address space
 CPU_CAP = 30            # seconds of CPU time
 WALL_CAP = 60           # seconds
 PEAK_CAP_KB = 768 << 10 # resident memory any case may reach
-# Under AddressSanitizer (tools/sanitize.sh) the binary reserves terabytes of shadow address space
+# Under AddressSanitizer (tools/ci/sanitize.sh) the binary reserves terabytes of shadow address space
 # at start, so no address-space cap can hold; the resident-memory cap still does, with room for
 # ASan's own allocator and quarantine.
 SANITIZED = os.environ.get("TESSERA_HOSTILE_SANITIZED") == "1"
