@@ -25,11 +25,11 @@
 
 #include "io/input_file.hpp"
 #include "io/memory_budget.hpp"
-#include "io/nesting_depth.hpp"
 #include "scene/gltf/gltf_animation.hpp"
 #include "scene/gltf/gltf_compression.hpp"
 #include "scene/gltf/gltf_extensions.hpp"
 #include "scene/gltf/gltf_geometry.hpp"
+#include "scene/gltf/gltf_json_checks.hpp"
 #include "scene/gltf/gltf_materials.hpp"
 #include "scene/scene_validation.hpp"
 #include "texture/texture.hpp"
@@ -184,61 +184,6 @@ bool keep_encoded_image(tinygltf::Image* image, const int index, std::string* er
     return true;
 }
 
-// What tinygltf would not check, or not survive: a GLB of another version
-// than 2, and JSON nested so deep that nlohmann's recursive parser overflows
-// the stack (the GLB's JSON chunk alike).
-void check_json_before_parsing(std::span<const std::uint8_t> bytes, bool binary, const std::string& source) {
-    std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (binary) {
-        const auto u32 = [&](std::size_t at) {
-            std::uint32_t v = 0;
-            std::memcpy(&v, bytes.data() + at, 4);
-            return v;
-        };
-        if (bytes.size() < 20) fail(source, "invalid glTF binary (.glb): " + std::to_string(bytes.size()) +
-                                                " bytes, shorter than its 12-byte header and a chunk header");
-        if (u32(4) != 2)
-            fail(source, "invalid glTF binary (.glb): version " + std::to_string(u32(4)) + ", expected 2");
-        const std::size_t length = std::min<std::size_t>(u32(12), bytes.size() - 20);
-        json = json.substr(20, length);
-    }
-    // tinygltf reads these as unsigned and, given a negative number, silently keeps 0.
-    for (const char* key : {"\"byteOffset\"", "\"byteLength\"", "\"byteStride\""}) {
-        for (std::size_t at = json.find(key); at != std::string_view::npos; at = json.find(key, at + 1)) {
-            std::size_t i = at + std::strlen(key);
-            while (i < json.size() && (json[i] == ' ' || json[i] == '\t' || json[i] == '\n' || json[i] == '\r')) ++i;
-            if (i >= json.size() || json[i] != ':') continue;
-            for (++i; i < json.size() && (json[i] == ' ' || json[i] == '\t' || json[i] == '\n' || json[i] == '\r');) ++i;
-            if (i < json.size() && json[i] == '-') {
-                const std::size_t line = 1 + std::size_t(std::count(json.begin(), json.begin() + std::ptrdiff_t(at), '\n'));
-                fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(line) + ": " +
-                                 std::string(key) + " is negative; offsets, lengths and strides are >= 0");
-            }
-        }
-    }
-    // Morph weights are numbers; tinygltf drops an array holding a string ("NaN") without a word.
-    for (std::size_t at = json.find("\"weights\""); at != std::string_view::npos; at = json.find("\"weights\"", at + 1)) {
-        std::size_t i = at + 9;
-        while (i < json.size() && std::isspace(static_cast<unsigned char>(json[i]))) ++i;
-        if (i >= json.size() || json[i] != ':') continue;
-        for (++i; i < json.size() && std::isspace(static_cast<unsigned char>(json[i]));) ++i;
-        if (i >= json.size() || json[i] != '[') continue;
-        const std::size_t end = json.find(']', i);
-        const std::string_view values = json.substr(i + 1, end == std::string_view::npos ? end : end - i - 1);
-        if (values.find_first_of("\"[{tfn") != std::string_view::npos) {
-            const std::size_t line = 1 + std::size_t(std::count(json.begin(), json.begin() + std::ptrdiff_t(at), '\n'));
-            fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(line) +
-                             ": \"weights\" holds something other than numbers (" +
-                             std::string(values.substr(0, 24)) + "); morph weights are finite numbers");
-        }
-    }
-    const io::Depth depth = io::json_nesting_depth(json, io::kMaxJsonDepth);
-    if (depth.line != 0)
-        fail(source, std::string(binary ? "the JSON chunk's " : "") + "line " + std::to_string(depth.line) +
-                         ": JSON nested deeper than " + std::to_string(io::kMaxJsonDepth) +
-                         " levels (arrays and objects, e.g. in extras); refused before parsing");
-}
-
 tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::string& source, const fs::path& base_dir,
                             const GltfReadOptions& options) {
     if (bytes.size() > std::numeric_limits<unsigned int>::max())
@@ -254,7 +199,7 @@ tinygltf::Model parse_model(std::span<const std::uint8_t> bytes, const std::stri
     loader.SetFsCallbacks({file_exists, expand_nothing, read_whole_file, write_nothing, &context});
     std::string err, warn;
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    check_json_before_parsing(bytes, binary, source);
+    gltf::check_json_before_parsing(bytes, binary, source);
     // Meshopt fallback buffers and Draco indices, which tinygltf would refuse (gltf_compression.hpp).
     const gltf::ParseInput input = gltf::prepare_for_tinygltf(bytes, binary);
     if (!input.bytes.empty()) bytes = input.bytes;
