@@ -70,6 +70,7 @@ TEST_CASE("real exporters' files render as the untouched sample model does (PSNR
         {"morph_optimize.glb", "AnimatedMorphCube/glTF/AnimatedMorphCube.gltf", 30.0},
         {"spheres_c.glb", "MetalRoughSpheresNoTextures/MetalRoughSpheresNoTextures.glb", 30.0},
         {"spheres_cc.glb", "MetalRoughSpheresNoTextures/MetalRoughSpheresNoTextures.glb", 30.0},
+        {"texcoord_webp.glb", "TextureCoordinateTest/TextureCoordinateTest.glb", 40.0},
     };
     if (!fs::is_directory(assets)) {
         MESSAGE("skipped: no sample models at " << assets.string());
