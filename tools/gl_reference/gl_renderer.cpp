@@ -1,17 +1,20 @@
 #include "gl_renderer.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#define GL_GLEXT_PROTOTYPES 1  // glvnd's libOpenGL exports every core entry point: no loader needed
-#include <GL/glcorearb.h>
+
+#include "gl_common.hpp"
+#include "gl_ibl.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -43,14 +46,16 @@ void main() {
 
 // The reference fragment shader, verbatim but for the light count: the arrays hold
 // LIGHT_ARRAY_SIZE = max(LIGHT_COUNT, 1) entries (GLSL has no empty arrays) and the
-// loop runs LIGHT_COUNT times, so a scene without lights gets ambient only.
+// loop runs LIGHT_COUNT times, so a scene without lights gets ambient only. With an
+// environment, IBL_DECLARATIONS and IBL_AMBIENT splice in the IBL chapter's pbr.fs (gl_ibl.cpp):
+// its ambient term in place of 0.03·albedo·ao.
 constexpr const char* kFragmentShaderBody = R"(
 in vec2 TexCoords; in vec3 WorldPos; in vec3 Normal;
 out vec4 FragColor;
 uniform vec3  albedo;  uniform float metallic;  uniform float roughness;  uniform float ao;
 uniform vec3  lightPositions[LIGHT_ARRAY_SIZE];  uniform vec3 lightColors[LIGHT_ARRAY_SIZE];  uniform vec3 camPos;
 const float PI = 3.14159265359;
-
+IBL_DECLARATIONS
 float DistributionGGX(vec3 N, vec3 H, float roughness) {
     float a = roughness*roughness; float a2 = a*a;
     float NdotH = max(dot(N, H), 0.0); float NdotH2 = NdotH*NdotH;
@@ -85,7 +90,11 @@ void main() {
         float NdotL = max(dot(N, L), 0.0);
         Lo += (kD * albedo / PI + specular) * radiance * NdotL;
     }
+#if ENVIRONMENT
+IBL_AMBIENT
+#else
     vec3 color = vec3(0.03) * albedo * ao + Lo;
+#endif
     color = color / (color + vec3(1.0));
     color = pow(color, vec3(1.0/2.2));
     FragColor = vec4(color, 1.0);
@@ -101,8 +110,6 @@ void main() {
     FragColor = vec4(bytes) / 255.0;
 }
 )";
-
-[[noreturn]] void fail(const std::string& what) { throw std::runtime_error("OpenGL reference: " + what); }
 
 std::string egl_error_name(EGLint code) {
     switch (code) {
@@ -132,59 +139,6 @@ bool has_extension(const char* list, const char* name) {
     for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
         if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
     return false;
-}
-
-void check_gl(const char* where) {
-    const GLenum err = glGetError();
-    if (err != GL_NO_ERROR) {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "0x%04x", unsigned(err));
-        fail(std::string(where) + ": GL error " + buf);
-    }
-}
-
-GLuint compile_shader(GLenum type, const std::string& source, const char* name) {
-    const GLuint shader = glCreateShader(type);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE, log_length = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &log_length);
-    std::string log(std::size_t(log_length > 0 ? log_length : 0), '\0');
-    if (log_length > 0) glGetShaderInfoLog(shader, log_length, nullptr, log.data());
-    if (!ok) {
-        glDeleteShader(shader);
-        fail(std::string(name) + " failed to compile:\n" + log.c_str());
-    }
-    return shader;
-}
-
-GLuint link_program(const std::string& vertex_source, const std::string& fragment_source, const char* name) {
-    const GLuint vs = compile_shader(GL_VERTEX_SHADER, vertex_source, "vertex shader");
-    GLuint fs = 0;
-    try {
-        fs = compile_shader(GL_FRAGMENT_SHADER, fragment_source, name);
-    } catch (...) {
-        glDeleteShader(vs);
-        throw;
-    }
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
-    glLinkProgram(program);
-    glDeleteShader(vs);  // flagged; freed with the program
-    glDeleteShader(fs);
-    GLint ok = GL_FALSE, log_length = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &log_length);
-    if (!ok) {
-        std::string log(std::size_t(log_length > 0 ? log_length : 0), '\0');
-        if (log_length > 0) glGetProgramInfoLog(program, log_length, nullptr, log.data());
-        glDeleteProgram(program);
-        fail(std::string(name) + " program failed to link:\n" + log.c_str());
-    }
-    return program;
 }
 
 // Uniform locations; -1 where the compiler dropped an unused uniform (glUniform ignores -1).
@@ -231,14 +185,19 @@ struct GlReferenceRenderer::State {
 
     GLuint pbr_program = 0;
     int pbr_light_count = -1;  // the LIGHT_COUNT pbr_program was built for
+    bool pbr_environment = false;  // and whether with the IBL ambient
     Uniforms pbr_uniforms;
     GLuint id_program = 0;
     Uniforms id_uniforms;
 
     std::vector<GpuMesh> meshes;
 
+    std::unique_ptr<GlIbl> ibl;  // made for the first scene with an environment
+    IblOptions ibl_options;
+
     ~State() {
         if (context != EGL_NO_CONTEXT) {
+            ibl.reset();
             free_meshes();
             if (pbr_program) glDeleteProgram(pbr_program);
             if (id_program) glDeleteProgram(id_program);
@@ -371,17 +330,30 @@ struct GlReferenceRenderer::State {
         }
     }
 
-    void ensure_pbr_program(int light_count) {
-        if (pbr_program != 0 && pbr_light_count == light_count) return;
+    void ensure_pbr_program(int light_count, bool environment) {
+        if (pbr_program != 0 && pbr_light_count == light_count && pbr_environment == environment) return;
         if (pbr_program) glDeleteProgram(pbr_program);
         pbr_program = 0;
+        std::string body = kFragmentShaderBody;
+        const auto splice = [&body](const std::string& name, const char* text) {
+            body.replace(body.find(name), name.size(), text);
+        };
+        splice("IBL_DECLARATIONS", environment ? kIblFragmentDeclarations : "");
+        splice("IBL_AMBIENT", environment ? kIblAmbient : "");
         const std::string fragment = "#version 330 core\n#define LIGHT_COUNT " + std::to_string(light_count) +
                                      "\n#define LIGHT_ARRAY_SIZE " + std::to_string(light_count > 0 ? light_count : 1) +
-                                     "\n" + kFragmentShaderBody;
+                                     "\n#define ENVIRONMENT " + (environment ? "1" : "0") + "\n" + body;
         pbr_program = link_program(kVertexShader, fragment, "PBR fragment shader");
         pbr_uniforms = Uniforms(pbr_program);
         pbr_light_count = light_count;
+        pbr_environment = environment;
         check_gl("building the PBR program");
+    }
+
+    // The environment's maps (computed unless they are the last scene's).
+    void prepare_environment(const Scene& scene) {
+        if (!ibl) ibl = std::make_unique<GlIbl>();
+        ibl->prepare(scene.environment.file, ibl_options);
     }
 
     void free_meshes() {
@@ -429,7 +401,9 @@ struct GlReferenceRenderer::State {
             fail("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
         ensure_framebuffer(scene.width, scene.height);
         if (scene.msaa == kMsaaSamples) ensure_msaa_framebuffer(scene.width, scene.height);
-        ensure_pbr_program(int(scene.lights.size()));
+        const bool environment = scene.environment.present();
+        if (environment) prepare_environment(scene);
+        ensure_pbr_program(int(scene.lights.size()), environment);
         upload_meshes(scene);
     }
 
@@ -456,6 +430,10 @@ struct GlReferenceRenderer::State {
         glUniformMatrix4fv(u.view, 1, GL_FALSE, glm::value_ptr(view));
         glUniformMatrix4fv(u.projection, 1, GL_FALSE, glm::value_ptr(projection));
         glUniform3fv(u.cam_pos, 1, glm::value_ptr(scene.camera.position));
+        const bool environment = !object_ids && scene.environment.present();
+        const float rotation = glm::radians(scene.environment.rotation_degrees);  // as shade::ibl_lighting
+        const float cos_rotation = std::cos(rotation), sin_rotation = std::sin(rotation);
+        if (environment) ibl->bind_for_shading(pbr_program, scene.environment.intensity, cos_rotation, sin_rotation);
         if (!object_ids && !scene.lights.empty()) {
             std::vector<glm::vec3> positions, colors;
             for (const Light& light : scene.lights) {
@@ -485,6 +463,8 @@ struct GlReferenceRenderer::State {
             glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
         }
         glBindVertexArray(0);
+        if (environment && scene.environment.background)
+            ibl->draw_background(view, projection, scene.environment.intensity, cos_rotation, sin_rotation);
         if (multisampled) resolve(scene.width, scene.height);
     }
 
@@ -591,6 +571,14 @@ std::vector<glm::vec2> GlReferenceRenderer::msaa_sample_positions() {
         glGetMultisamplefv(GL_SAMPLE_POSITION, i, glm::value_ptr(positions[i]));
     check_gl("querying GL_SAMPLE_POSITION");
     return positions;
+}
+
+void GlReferenceRenderer::set_ibl_options(const IblOptions& options) { state_->ibl_options = options; }
+
+IblMapsReadback GlReferenceRenderer::read_ibl_maps(const Scene& scene) {
+    if (!scene.environment.present()) fail("read_ibl_maps: the scene has no environment");
+    state_->prepare_environment(scene);
+    return state_->ibl->read_maps();
 }
 
 std::string GlReferenceRenderer::renderer_name() const {

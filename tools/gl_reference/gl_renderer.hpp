@@ -1,6 +1,7 @@
 // A peer renderer: the same scene drawn by OpenGL 3.3 core with the ORIGINAL GLSL of
-// docs/reference/pbr_lighting.md, on Mesa's llvmpipe (a CPU driver) through an
-// EGL surfaceless context. It checks Tessera's pixels against an independent
+// docs/reference/pbr_lighting.md, and for a scene with an [environment] the image-based
+// lighting chapters' GLSL and GL set-up of docs/reference/ibl_lighting.md (gl_ibl.cpp), on
+// Mesa's llvmpipe (a CPU driver) through an EGL surfaceless context. It checks Tessera's pixels against an independent
 // implementation and gives a CPU rasterizer to race. Not part of the pipeline:
 // nothing under src/ may include it.
 #pragma once
@@ -24,6 +25,34 @@ namespace tessera::gl_reference {
 // MSAA cross-check uses it to show that the unmirrored pattern is the one that matches.
 enum class WindowOrigin { bottom_left, top_left };
 
+// How the peer makes the IBL maps. The defaults do what docs/reference/ibl_lighting.md says
+// Tessera does where it departs from the chapter ("Where we depart from the GPU's bits"), so
+// that a comparison measures implementation differences; each flag restores the chapter's own.
+struct IblOptions {
+    // The chapter's RGB16F / RG16F textures; false: RGB32F / RG32F (Tessera keeps float).
+    bool half_float_storage = false;
+    // The chapter's texture() in irradiance_convolution.fs, whose level llvmpipe picks from the
+    // derivatives of sampleVec; false: textureLod(..., 4.0), Tessera's kIrradianceLod.
+    bool irradiance_lod_from_derivatives = false;
+    bool operator==(const IblOptions&) const = default;
+};
+
+// One level of a cube map read back: 6 faces (+X, −X, +Y, −Y, +Z, −Z) of size² RGB floats,
+// rows t = 0 first (GL's texel addressing, as Tessera's CubeMap::texel(level, face, x, y)).
+struct CubeLevelReadback {
+    int size = 0;
+    std::vector<float> rgb;  // [face][t][s][channel]
+};
+// The maps the peer computed for a scene's environment (glGetTexImage, as floats).
+struct IblMapsReadback {
+    std::vector<CubeLevelReadback> environment;  // envCubemap, every level
+    CubeLevelReadback irradiance;                // irradianceMap
+    std::vector<CubeLevelReadback> prefiltered;  // prefilterMap levels 0..4
+    int brdf_size = 0;
+    std::vector<float> brdf_rg;                  // brdfLUTTexture, [y][x][A, B], row y = roughness
+    double precompute_ms = 0;                    // the capture passes, to glFinish
+};
+
 // Owns one EGL display + GL 3.3 core context (current on the constructing thread;
 // use the object from that thread only) and an offscreen framebuffer of RGBA8
 // colour + 24-bit depth at the last scene's size. A scene with msaa = 4 is drawn into
@@ -31,6 +60,9 @@ enum class WindowOrigin { bottom_left, top_left };
 // resolved by glBlitFramebuffer into the single-sample one, which is read back; with
 // msaa = 1 nothing multisampled is made or used. Meshes and the shader program are
 // rebuilt when the scene (its meshes, or its light count) changes.
+// A scene with an environment: its maps are made by the chapter's capture passes on first
+// use and kept while the image file and the IblOptions stay the same; a frame draws the
+// objects with the IBL pbr.fs and then, with environment.background, the chapter's skybox.
 // Every EGL/GL failure throws std::runtime_error naming what failed, including a
 // driver whose GL_MAX_SAMPLES is below 4 when a scene asks for 4× MSAA.
 class GlReferenceRenderer {
@@ -60,6 +92,12 @@ public:
     // it: in pixels from the pixel's bottom-left corner, x right, y UP (window space). In
     // a top-down image the sample sits at (x, 1 - y) from the pixel's top-left corner.
     std::vector<glm::vec2> msaa_sample_positions();
+
+    // Options for the IBL maps of later renders (the maps are computed again when they change).
+    void set_ibl_options(const IblOptions& options);
+    // The IBL maps for scene.environment (computed now unless the last scene's image and
+    // options were the same); throws if the scene has no environment.
+    IblMapsReadback read_ibl_maps(const Scene& scene);
 
     // GL_RENDERER and GL_VERSION, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)", "3.3 (Core Profile) Mesa 22.3.6".
     std::string renderer_name() const;

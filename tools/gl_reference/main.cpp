@@ -27,6 +27,7 @@ struct Options {
     int frames = 30;
     int warmup = 3;
     bool json = false;
+    tessera::gl_reference::IblOptions ibl;  // the defaults: Tessera's documented departures
 };
 
 struct Summary {
@@ -61,6 +62,7 @@ int run(const Options& opt) {
         for (tessera::Material& material : scene.materials) material.double_sided = false;
 
     tessera::gl_reference::GlReferenceRenderer renderer;
+    renderer.set_ibl_options(opt.ibl);
     if (!opt.output.empty()) tessera::write_image(renderer.render(scene), opt.output);
 
     const char* lp_env = std::getenv("LP_NUM_THREADS");
@@ -104,6 +106,10 @@ int main(int argc, char** argv) {
     app.add_option("--frames", opt.frames, "Frames to time (0: only render the image)")->check(CLI::Range(0, 100000));
     app.add_option("--warmup", opt.warmup, "Frames rendered before timing")->check(CLI::Range(0, 100000));
     app.add_flag("--json", opt.json, "Print one JSON object");
+    app.add_flag("--ibl-half-float", opt.ibl.half_float_storage,
+                 "Environment maps in the chapter's RGB16F/RG16F (default RGB32F/RG32F, as Tessera keeps them)");
+    app.add_flag("--ibl-irradiance-lod-from-derivatives", opt.ibl.irradiance_lod_from_derivatives,
+                 "The chapter's texture() in the irradiance convolution (default textureLod(..., 4.0), as Tessera)");
     app.footer("Threads: llvmpipe reads LP_NUM_THREADS from the environment. With 4x MSAA a timed frame\n"
                "includes the resolve blit (clear + draws + resolve + glFinish).");
     try {
