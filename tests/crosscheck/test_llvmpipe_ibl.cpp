@@ -197,6 +197,10 @@ const environment::EnvironmentMaps& maps_from_peer_cube(gl_reference::GlReferenc
     return *maps;
 }
 
+// The error bounds of llvmpipe's GLSL asin and atan (radians) that the environment-cube check
+// allows, a little above the measured 3.9e-4 and 3.3e-6.
+constexpr float kAsinError = 4.0e-4f, kAtanError = 4.0e-6f;
+
 // Relative differences the measurements justify (docs/testing.md), from llvmpipe's environment
 // cube: irradiance max 1e-6; pre-filtered levels max 6.6e-5, 3.4e-5, 1.9e-5, 1.9e-5, 4e-6; the
 // BRDF table 99th percentile 7e-6, max 0.068 at grazing N·V, 9.6e-4 elsewhere.
@@ -210,6 +214,29 @@ constexpr double kMaxBrdfInnerDifference = 2e-3;
 
 }  // namespace
 
+TEST_CASE("crosscheck ibl: llvmpipe's GLSL asin and atan are within the errors the environment check allows") {
+    gl_reference::GlReferenceRenderer* gl = gl_renderer_or_skip();
+    if (!gl) return;
+    constexpr int kCount = 8192;
+    std::vector<float> x(kCount), angle(kCount);
+    for (int i = 0; i < kCount; ++i) {
+        x[std::size_t(i)] = -1.0f + 2.0f * float(i) / float(kCount - 1);
+        angle[std::size_t(i)] = 3.14f * (-1.0f + 2.0f * float(i) / float(kCount - 1));  // off ±π, where atan flips
+    }
+    const std::vector<float> gl_asin = gl->evaluate_glsl("asin(x)", x);
+    const std::vector<float> gl_atan = gl->evaluate_glsl("atan(sin(x), cos(x))", angle);
+    double asin_error = 0, atan_error = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        asin_error = std::max(asin_error, std::fabs(double(gl_asin[i]) - std::asin(double(x[i]))));
+        atan_error = std::max(atan_error, std::fabs(double(gl_atan[i]) - double(angle[i])));
+    }
+    // Measured: asin 3.9e-4 rad (an approximation, near |x| = 0.94), atan 3.3e-6 (with the
+    // driver's sin and cos, 7e-8 each). Tessera uses std::asin and std::atan2.
+    MESSAGE("llvmpipe's asin is off by up to " << asin_error << " rad, atan(y, x) by " << atan_error);
+    CHECK(asin_error <= double(kAsinError));
+    CHECK(atan_error <= double(kAtanError));
+}
+
 TEST_CASE("crosscheck ibl: llvmpipe's environment cube is the image sampled as Tessera samples it, to its asin error") {
     gl_reference::GlReferenceRenderer* gl = gl_renderer_or_skip();
     if (!gl) return;
@@ -219,12 +246,10 @@ TEST_CASE("crosscheck ibl: llvmpipe's environment cube is the image sampled as T
     const gl_reference::CubeLevelReadback& level0 = gl_maps.environment[0];
     REQUIRE(level0.size == environment::kEnvironmentCubeSize);
 
-    // equirectangular_to_cubemap.fs's v = asin(y)·0.3183 + 0.5: llvmpipe's asin is off by up to
-    // 3.9e-4 radians (measured over [-1, 1] against double), so its v by up to 1.25e-4 (0.016 of
-    // a row of the 256×128 image); its atan is off by 3.1e-6. Every texel must lie within the
-    // values Tessera's bilinear sampling takes over that v interval (slightly widened), up to
-    // float rounding; and most must agree to float rounding.
-    constexpr float kAsinError = 4.0e-4f, kAtanError = 4.0e-6f;
+    // equirectangular_to_cubemap.fs's v = asin(y)·0.3183 + 0.5: with llvmpipe's asin off by up to
+    // kAsinError (the test above), its v is off by up to 1.3e-4 (0.016 of a row of the 256×128
+    // image). Every texel must lie within the values Tessera's bilinear sampling takes over that
+    // v interval (and u ± kAtanError·0.1591), up to float rounding.
     const glm::vec2 inv_atan(0.1591f, 0.3183f);
     const int n = level0.size;
     std::size_t outside = 0, close = 0;

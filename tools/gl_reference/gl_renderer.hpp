@@ -99,6 +99,10 @@ public:
     // options were the same); throws if the scene has no environment.
     IblMapsReadback read_ibl_maps(const Scene& scene);
 
+    // GLSL `expression` (of a float x, e.g. "asin(x)") evaluated by the driver's fragment
+    // shader for each of `inputs`: how far its built-ins are from exact (explains differences).
+    std::vector<float> evaluate_glsl(const std::string& expression, const std::vector<float>& inputs);
+
     // GL_RENDERER and GL_VERSION, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)", "3.3 (Core Profile) Mesa 22.3.6".
     std::string renderer_name() const;
     std::string version() const;
