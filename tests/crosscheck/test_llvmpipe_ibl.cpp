@@ -403,3 +403,10 @@ TEST_CASE("crosscheck ibl: the chapter's own set-up (RGB16F maps, texture() in t
     check_ibl_scene(scene, "spheres_environment_chapter", kChapter);
     gl->set_ibl_options({});
 }
+
+TEST_CASE("crosscheck ibl: shapes.toml lit by the shipped environment agrees with llvmpipe") {
+    // Flat faces, a floor and ellipsoids: N·V and roughness over other ranges than the grid's.
+    Scene scene = load_scene_file(test::scene_path("shapes.toml"));
+    scene.environment = environment_scene().environment;
+    check_ibl_scene(scene, "shapes_environment", kEndToEnd);
+}
