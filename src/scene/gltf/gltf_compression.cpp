@@ -5,6 +5,7 @@
 #include <cstring>
 #include <exception>
 #include <optional>
+#include <string_view>
 
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
@@ -14,13 +15,14 @@
 #include "scene/gltf/draco_codec.hpp"
 #include "scene/gltf/gltf_accessors.hpp"
 #include "scene/gltf/gltf_geometry.hpp"
+#include "scene/gltf/meshopt_codec_v1.hpp"
 
 namespace tessera::gltf {
 namespace {
 
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
 // The ratified successor: the same JSON, plus vertex codec version 1 and the COLOR
-// filter (gltfpack -ce khr writes codec version 1).
+// filter (gltfpack -ce khr writes codec version 1), which meshopt_codec_v1.hpp decodes.
 constexpr const char* kKhrMeshopt = "KHR_meshopt_compression";
 constexpr const char* kMeshoptNames[] = {kMeshopt, kKhrMeshopt};
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
@@ -190,6 +192,9 @@ int add_buffer(tinygltf::Model& model, std::vector<unsigned char> bytes) {
 // byte per triangle (12 bytes of u32 indices); INDICES a byte per index. Checked
 // before allocating, so that a small file cannot ask for gigabytes.
 constexpr std::size_t kMaxMeshoptExpansion = 64;
+// Codec version 1 can store a block's byte position as "all deltas zero" in 2 bits: a block of
+// n <= 256 elements costs at least its control header (stride / 4 bytes), at most 4n = 1024×.
+constexpr std::size_t kMaxMeshoptV1Expansion = 1024;
 
 void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const std::vector<int>& fallback_buffers,
                          const std::string& source, const char* extension) {
@@ -208,12 +213,11 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
     // The extension's validity rules.
     if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES")
         fail(source, what + " mode is '" + mode + "', expected ATTRIBUTES, TRIANGLES or INDICES");
-    const std::string linked = std::to_string(MESHOPTIMIZER_VERSION / 1000) + "." + std::to_string(MESHOPTIMIZER_VERSION % 1000 / 10);
-    if (filter == "COLOR" && extension == kKhrMeshopt)
-        fail(source, what + " uses filter COLOR, which needs a meshoptimizer decoder newer than the " + linked +
-                         " this build has (Debian 12's); re-export with EXT_meshopt_compression (gltfpack -c)");
-    if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL")
-        fail(source, what + " filter is '" + filter + "', expected NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
+    const bool khr = std::string_view(extension) == kKhrMeshopt;  // COLOR is KHR_meshopt_compression's only
+    if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL" &&
+        !(khr && filter == "COLOR"))
+        fail(source, what + " filter is '" + filter + "', expected NONE, OCTAHEDRAL, QUATERNION, EXPONENTIAL" +
+                         (khr ? " or COLOR" : " (COLOR is KHR_meshopt_compression's)"));
     if (mode == "ATTRIBUTES" && (stride == 0 || stride % 4 != 0 || stride > 256))
         fail(source, what + " byteStride is " + std::to_string(stride) + "; ATTRIBUTES needs a multiple of 4 up to 256");
     if (mode != "ATTRIBUTES" && stride != 2 && stride != 4)
@@ -222,7 +226,8 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
         fail(source, what + " has filter " + filter + " with mode " + mode + "; filters are for ATTRIBUTES");
     if (mode == "TRIANGLES" && count % 3 != 0)
         fail(source, what + " has " + std::to_string(count) + " TRIANGLES indices, not a multiple of 3");
-    if ((filter == "OCTAHEDRAL" && stride != 4 && stride != 8) || (filter == "QUATERNION" && stride != 8))
+    if (((filter == "OCTAHEDRAL" || filter == "COLOR") && stride != 4 && stride != 8) ||
+        (filter == "QUATERNION" && stride != 8))
         fail(source, what + " byteStride is " + std::to_string(stride) + ", which filter " + filter + " does not allow");
     if (view.byteStride != 0 && view.byteStride != stride)
         fail(source, what + " byteStride " + std::to_string(stride) + " differs from the bufferView's " +
@@ -235,19 +240,13 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
         fail(source, what + " reads its compressed data from buffer " + std::to_string(buffer) +
                          ", a fallback buffer without data");
     const unsigned char* compressed = buffer_range(model, buffer, offset, length, what, source);
-    if (decoded_size / kMaxMeshoptExpansion > length)
+    // ATTRIBUTES streams whose header is not codec version 0's go to meshopt_codec_v1.hpp, which
+    // decodes version 1 and says what is wrong with anything else; the rest to libmeshoptimizer.
+    const bool codec_v1 = mode == "ATTRIBUTES" && length > 0 && compressed[0] != 0xa0;
+    if (decoded_size / (codec_v1 ? kMaxMeshoptV1Expansion : kMaxMeshoptExpansion) > length)
         fail(source, what + " is too short: " + std::to_string(length) + " bytes cannot hold " +
                          std::to_string(count) + " elements of " + std::to_string(stride) + " bytes");
 
-    // The first byte of an ATTRIBUTES stream is 0xa0 | codec version. This
-    // build's decoder reads version 0 only (version 1 came with meshoptimizer 0.23).
-    if (mode == "ATTRIBUTES" && length > 0 && (compressed[0] & 0xf0) == 0xa0 && (compressed[0] & 0x0f) > 0) {
-#if MESHOPTIMIZER_VERSION < 230
-        fail(source, what + " uses meshoptimizer's vertex codec version " + std::to_string(compressed[0] & 0x0f) +
-                         ", which needs meshoptimizer 0.23 or newer to decode; this build has " + linked +
-                         " (Debian 12's); re-export with EXT_meshopt_compression (gltfpack -c, not -ce khr)");
-#endif
-    }
     try {
         io::check_memory(decoded_size, what + " decoded");
     } catch (const io::MemoryBudgetError& e) {
@@ -255,7 +254,10 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
     }
     std::vector<unsigned char> decoded(decoded_size);
     int status = 0;
-    if (mode == "ATTRIBUTES") status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, length);
+    if (codec_v1) {
+        const std::string why = decode_meshopt_attributes({compressed, length}, count, stride, decoded);
+        if (!why.empty()) fail(source, what + ": the ATTRIBUTES data (" + std::to_string(length) + " bytes): " + why);
+    } else if (mode == "ATTRIBUTES") status = meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, length);
     else if (mode == "TRIANGLES") status = meshopt_decodeIndexBuffer(decoded.data(), count, stride, compressed, length);
     else status = meshopt_decodeIndexSequence(decoded.data(), count, stride, compressed, length);
     if (status != 0)
@@ -265,6 +267,10 @@ void decode_meshopt_view(tinygltf::Model& model, std::size_t view_index, const s
     if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(decoded.data(), count, stride);
     else if (filter == "QUATERNION") meshopt_decodeFilterQuat(decoded.data(), count, stride);
     else if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
+    else if (filter == "COLOR") {
+        const std::string why = decode_meshopt_color_filter(decoded, count, stride);
+        if (!why.empty()) fail(source, what + ": " + why);
+    }
 
     const int decoded_buffer = add_buffer(model, std::move(decoded));
     tinygltf::BufferView& same_view = model.bufferViews[view_index];

@@ -4,6 +4,8 @@
 // - EXT_meshopt_compression (meshoptimizer's decoder): each compressed buffer
 //   view (modes ATTRIBUTES, TRIANGLES, INDICES; filters NONE, OCTAHEDRAL,
 //   QUATERNION, EXPONENTIAL) becomes a buffer view over its decoded bytes.
+//   KHR_meshopt_compression likewise, with attribute codec version 1 and filter
+//   COLOR decoded by meshopt_codec_v1.hpp (Debian's meshoptimizer 0.18 has neither).
 //   Fallback buffers (marked `fallback`, or without a uri) are never read: the
 //   bytes tinygltf parses have them replaced by a 3-byte placeholder first, and
 //   a buffer view that reads one without being compressed is an error.
@@ -39,7 +41,7 @@ struct ParseInput {
 // cannot make sense of are left to tinygltf to refuse.
 ParseInput prepare_for_tinygltf(std::span<const std::uint8_t> bytes, bool binary);
 
-// Decodes every EXT_meshopt_compression buffer view and KHR_draco_mesh_compression
+// Decodes every EXT_/KHR_meshopt_compression buffer view and KHR_draco_mesh_compression
 // primitive of `model` in place (see above). `fallback_buffers` from prepare_for_tinygltf.
 void decode_compressed_geometry(tinygltf::Model& model, const std::string& source,
                                 const std::vector<int>& fallback_buffers);

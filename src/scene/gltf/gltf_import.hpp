@@ -25,8 +25,9 @@
 //   Accessors (gltf_accessors.hpp): sparse ones get their substitutions, ones
 //   without a buffer view are zeros (at most kMaxImplicitElements elements).
 //   Compressed geometry is decoded right after parsing (gltf_compression.hpp):
-//   EXT_meshopt_compression buffer views (every mode and filter; fallback
-//   buffers are never read) and KHR_draco_mesh_compression primitives.
+//   EXT_ and KHR_meshopt_compression buffer views (every mode and filter, both
+//   attribute codec versions; fallback buffers are never read) and
+//   KHR_draco_mesh_compression primitives.
 // - Skins, morph targets and animations: gltf_animation.hpp (GltfContent::rig).
 //   A node with a skin or a morphed mesh gets its own copy of the mesh, posed on
 //   the CPU at the rest pose (the nodes' own TRS and weights); skinned objects'
