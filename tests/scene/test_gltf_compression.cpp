@@ -284,7 +284,7 @@ TEST_CASE("EXT_meshopt_compression: every mode and filter decodes to the plain f
     }
 }
 
-TEST_CASE("KHR_meshopt_compression: codec version 0 decodes as EXT's; a stream that is not what its header says is refused") {
+TEST_CASE("KHR_meshopt_compression: codec version 0 decodes as EXT's, and a stream that is not what its header says is refused") {
     const test::GridMesh grid = test::grid_mesh(8);
     const Mesh plain = only_mesh(import_bytes(test::plain_grid_gltf(grid)));
     const GltfContent content = import_bytes(test::as_text(test::khr_meshopt_grid_glb(grid)), "grid.glb");

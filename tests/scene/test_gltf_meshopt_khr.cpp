@@ -146,7 +146,7 @@ TEST_CASE("gltfpack -ce khr files decode to the accessors of their gltfpack -c t
     }
 }
 
-TEST_CASE("gltfpack -ce khr files: a damaged stream is refused naming the buffer view; COLOR is KHR's only") {
+TEST_CASE("gltfpack -ce khr files: a damaged stream is refused naming the buffer view, and COLOR is KHR's only") {
     std::vector<int> fallback_buffers;
     SUBCASE("a channel mode byte (the stream's last) that codec version 1 does not have") {
         Loaded loaded = load_parsed(file_bytes("morph_khr.glb"), fallback_buffers);
