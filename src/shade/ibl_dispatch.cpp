@@ -19,6 +19,7 @@ namespace {
 CubeArrays cube_arrays(const environment::CubeMap& cube) {
     CubeArrays arrays;
     arrays.texels = &cube.data().front().x;
+    arrays.float_count = 3 * cube.data().size();
     arrays.levels = cube.levels();
     for (int l = 0; l < cube.levels() && l < 8; ++l)
         arrays.size[l] = float(cube.size(l)), arrays.offset[l] = float(cube.level_offset(l));

@@ -55,6 +55,7 @@ void sample_environment_background(Isa isa, std::size_t count, const float* x, c
 // The maps' raw arrays, as the per-ISA kernels take them (plain data only).
 struct CubeArrays {
     const float* texels = nullptr;  // RGB, CubeMap::data()
+    std::size_t float_count = 0;    // 3 · CubeMap::data().size()
     int levels = 0;
     float size[8] = {};    // per level: the face side
     float offset[8] = {};  // per level: the first texel's index (exact in float: < 2^24)
