@@ -4,10 +4,10 @@
 # background), alternated within each round so both see the same machine noise.
 # Prints, per binary, size and thread count, the median frames and the median of
 # the per-round ratios environment / without (issue 32's target: <= 1.35).
-#   [ROUNDS=3] [FRAMES=5] [SIZES="1280x720 3840x2160"] [THREADS="1 2"] tools/bench_environment.sh [TESSERA...]
-# e.g. tools/bench_environment.sh old/tessera build/tessera
+#   [ROUNDS=3] [FRAMES=5] [SIZES="1280x720 3840x2160"] [THREADS="1 2"] tools/bench/bench_environment.sh [TESSERA...]
+# e.g. tools/bench/bench_environment.sh old/tessera build/tessera
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 rounds="${ROUNDS:-3}"
 frames="${FRAMES:-5}"
 sizes="${SIZES:-1280x720 3840x2160}"
@@ -17,8 +17,14 @@ for binary in "$@"; do [ -x "$binary" ] || { echo "bench_environment: $binary is
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 echo "rounds $rounds, $frames frames (1 warm-up); load before: $(cut -d' ' -f1-3 /proc/loadavg)"
-# A first run fills the environment's disk cache, so no timed run pre-computes.
-"$1" render "$root/scenes/spheres_environment.toml" --width 64 --height 36 -o "$work/warm.png" >/dev/null
+# Each binary gets its own environment disk cache (builds may store other
+# formats), filled first, so no timed run pre-computes.
+b=0
+for binary in "$@"; do
+  b=$((b + 1))
+  TESSERA_CACHE_DIR="$work/cache.$b" "$binary" render "$root/scenes/spheres_environment.toml" --width 64 --height 36 \
+    -o "$work/warm.png" >/dev/null
+done
 for round in $(seq 1 "$rounds"); do
   for size in $sizes; do
     for threads in $threads_list; do
@@ -26,7 +32,7 @@ for round in $(seq 1 "$rounds"); do
       for binary in "$@"; do
         b=$((b + 1))
         for scene in spheres spheres_environment; do
-          "$binary" bench "$root/scenes/$scene.toml" --width "${size%x*}" --height "${size#*x}" --threads "$threads" \
+          TESSERA_CACHE_DIR="$work/cache.$b" "$binary" bench "$root/scenes/$scene.toml" --width "${size%x*}" --height "${size#*x}" --threads "$threads" \
             --frames "$frames" --warmup 1 --json >"$work/$b.$size.$threads.$scene.$round.json"
         done
       done
