@@ -142,4 +142,23 @@ void TESSERA_SIMD_ENTRY(sample_environment_background)(std::size_t count, const 
     }
 }
 
+void TESSERA_SIMD_ENTRY(sample_environment_background_row)(std::size_t count, const float* column,
+                                                           const BackgroundRays& rays, const CubeArrays& cube,
+                                                           const IblArrays& ibl, float scale, const RadianceOutputs& out) {
+    const std::size_t end = padded_count(count);
+    const Batch intensity(ibl.intensity), width(rays.width), ndc_y(rays.ndc_y);
+    const V3 forward{Batch(rays.forward.x), Batch(rays.forward.y), Batch(rays.forward.z)};
+    const V3 right{Batch(rays.right.x), Batch(rays.right.y), Batch(rays.right.z)};
+    const V3 up{Batch(rays.up.x), Batch(rays.up.y), Batch(rays.up.z)};
+    for (std::size_t i = 0; i < end; i += Batch::size) {
+        // background_ray, operation for operation.
+        const Batch ndc_x = Batch(2.0f) * (xsimd::load_unaligned(column + i) + Batch(0.5f)) / width - Batch(1.0f);
+        const V3 d = (forward + right * ndc_x) + up * ndc_y;
+        const Face c = face_coords(environment_direction(ibl, d));
+        V3 value = sample_bilinear_level(cube.texels, cube.float_count, c, cube.size[0], cube.offset[0]) * intensity;
+        if (scale != 1.0f) value = value * Batch(scale);
+        value.x.store_unaligned(out.r + i), value.y.store_unaligned(out.g + i), value.z.store_unaligned(out.b + i);
+    }
+}
+
 }  // namespace tessera::shade

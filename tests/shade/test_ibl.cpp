@@ -220,3 +220,34 @@ TEST_CASE("IBL kernels: neighbouring lanes (windowed taps) give the scalar refer
         CHECK(std::memcmp(ambient.b.data(), shaded.b.data(), n * 4) == 0);
     }
 }
+
+TEST_CASE("IBL background rows: every ISA gives background_ray's scalar bits, gaps and all") {
+    std::mt19937 random(41);
+    environment::EnvironmentMaps maps = random_maps(random);
+    maps.background = environment::CubeMap(64, 1);
+    std::uniform_real_distribution<float> value(0.0f, 10.0f);
+    for (glm::vec3& t : maps.background.data()) t = {value(random), value(random), value(random)};
+    maps.background.fill_borders(0);
+    IblLighting ibl = ibl_lighting(EnvironmentLight{});
+    ibl.maps = &maps;
+    const BackgroundRays rays{glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f)), {0.76f, 0.0f, 0.2f}, {0.0f, 0.41f, 0.05f},
+                              1280.0f, 0.37f};
+    // A row's uncovered pixels: runs with gaps where a surface covers the row.
+    std::vector<float> columns;
+    for (int x = 0; x < 1280; ++x)
+        if (x % 97 < 60) columns.push_back(float(x));
+    const std::size_t n = columns.size();
+    columns.resize(padded_count(n), 0.0f);
+    Outputs expected(n);
+    sample_environment_background_row(Isa::scalar, n, columns.data(), rays, ibl, 0.5f, expected.outputs());
+    CHECK(expected.g[7] == environment_background(ibl, background_ray(rays, columns[7])).g * 0.5f);
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!isa_supported(isa)) continue;
+        INFO(isa_name(isa));
+        Outputs actual(n);
+        sample_environment_background_row(isa, n, columns.data(), rays, ibl, 0.5f, actual.outputs());
+        CHECK(std::memcmp(actual.r.data(), expected.r.data(), n * 4) == 0);
+        CHECK(std::memcmp(actual.g.data(), expected.g.data(), n * 4) == 0);
+        CHECK(std::memcmp(actual.b.data(), expected.b.data(), n * 4) == 0);
+    }
+}
