@@ -1,9 +1,14 @@
 #include "environment/precompute.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "environment/precompute_kernels.hpp"
+#include "simd/lane_padding.hpp"
 
 namespace tessera::environment {
 
@@ -92,28 +97,107 @@ CubeMap equirect_to_cubemap(const EquirectImage& image, int size) {
     return cube;
 }
 
-CubeMap convolve_irradiance(const CubeMap& environment, int size) {
-    // The two loops' samples, counted in float as the shader's loops count.
-    struct Sample {
-        glm::vec3 tangent;  // (sin θ cos φ, sin θ sin φ, cos θ)
-        float cos_theta, sin_theta;
-    };
-    std::vector<Sample> samples;
+namespace {
+
+// The two loops' samples of irradiance_convolution.fs, counted in float as the shader's loops count.
+struct IrradianceSample {
+    glm::vec3 tangent;  // (sin θ cos φ, sin θ sin φ, cos θ)
+    float cos_theta, sin_theta;
+};
+std::vector<IrradianceSample> irradiance_samples() {
+    std::vector<IrradianceSample> samples;
     for (float phi = 0.0f; phi < 2.0f * kPi; phi += kSampleDelta)
         for (float theta = 0.0f; theta < 0.5f * kPi; theta += kSampleDelta)
             samples.push_back({{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)},
                                std::cos(theta), std::sin(theta)});
+    return samples;
+}
+
+// The convolution's frame at a texel: N, right = cross(up, N) (not normalized,
+// as in the chapter) and up = cross(N, right).
+struct IrradianceFrame {
+    glm::vec3 n, right, up;
+};
+IrradianceFrame irradiance_frame(int face, int x, int y, int size) {
+    const glm::vec3 n = glm::normalize(texel_direction(face, x, y, size));
+    const glm::vec3 right = glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), n);
+    return {n, right, glm::cross(n, right)};
+}
+
+// sample_to_world's frame around a pre-filtered texel's N.
+struct PrefilterFrame {
+    glm::vec3 normal, tangent, bitangent;
+};
+PrefilterFrame prefilter_frame(int face, int x, int y, int size) {
+    const glm::vec3 normal = glm::normalize(texel_direction(face, x, y, size));
+    const glm::vec3 up = std::fabs(normal.z) < 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 tangent = glm::normalize(glm::cross(up, normal));
+    return {normal, tangent, glm::cross(normal, tangent)};
+}
+
+// A pre-filter level's samples: the tangent-space H and the mip level each
+// reads. With N = V = R, D, N·H and H·V depend only on the sample (the
+// tangent-space H's cos θ), so they are worked out once per level.
+struct PrefilterSamples {
+    std::vector<glm::vec3> tangent_h;
+    std::vector<float> lod;
+};
+PrefilterSamples prefilter_samples(float roughness, float sa_texel) {
+    PrefilterSamples samples{std::vector<glm::vec3>(kSampleCount), std::vector<float>(kSampleCount)};
+    for (unsigned i = 0; i < kSampleCount; ++i) {
+        const glm::vec3 z(0.0f, 0.0f, 1.0f);
+        const glm::vec3 h = samples.tangent_h[i] = ggx_sample_tangent(hammersley(i, kSampleCount), roughness);
+        const float d = distribution_ggx(z, h, roughness);
+        const float n_dot_h = glm::max(h.z, 0.0f);
+        const float h_dot_v = glm::max(h.z, 0.0f);
+        const float pdf = d * n_dot_h / (4.0f * h_dot_v) + 0.0001f;
+        const float sa_sample = 1.0f / (float(kSampleCount) * pdf + 0.0001f);
+        samples.lod[i] = roughness == 0.0f ? 0.0f : 0.5f * std::log2(sa_sample / sa_texel);
+    }
+    return samples;
+}
+
+// Plain-array lanes for the SIMD kernels: `channels` float arrays of
+// padded_count(count) entries.
+struct Lanes {
+    std::size_t count, padded;
+    std::vector<std::vector<float>> channel;
+    Lanes(std::size_t n, int channels) : count(n), padded(simd::padded_count(n)), channel(std::size_t(channels)) {
+        for (auto& c : channel) c.assign(padded, 0.0f);
+    }
+    float* operator[](int c) { return channel[std::size_t(c)].data(); }
+    void set3(int c, std::size_t i, const glm::vec3& v) { (*this)[c][i] = v.x, (*this)[c + 1][i] = v.y, (*this)[c + 2][i] = v.z; }
+};
+
+// Runs kernel(first, count) over the lanes [0, padded) in parallel, in blocks
+// of whole vectors: each lane is computed by one call, so the result does not
+// depend on the thread count.
+template <class Kernel>
+void for_each_lane_block(std::size_t padded, Kernel&& kernel) {
+    constexpr std::size_t block = simd::kLanePadding;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, padded / block), [&](const tbb::blocked_range<std::size_t>& r) {
+        kernel(r.begin() * block, (r.end() - r.begin()) * block);
+    });
+}
+
+// The SIMD kernels compute texel indices in float: exact while below 2^24.
+bool float_indices_exact(const CubeMap& cube) { return cube.data().size() * 3 < (std::size_t(1) << 24); }
+
+simd::Isa checked(simd::Isa isa) {
+    simd::require_supported(isa);
+    return isa;
+}
+
+CubeMap convolve_irradiance_reference(const CubeMap& environment, int size) {
+    const std::vector<IrradianceSample> samples = irradiance_samples();
     const float nr_samples = float(samples.size());
     const int level = int(kIrradianceLod);
     CubeMap cube(size, 1);
     for_each_texel(cube, 0, [&](int face, int x, int y) {
-        const glm::vec3 n = glm::normalize(texel_direction(face, x, y, size));
+        const IrradianceFrame frame = irradiance_frame(face, x, y, size);
         glm::vec3 irradiance(0.0f);
-        glm::vec3 up(0.0f, 1.0f, 0.0f);
-        const glm::vec3 right = glm::cross(up, n);  // not normalized, as in the chapter
-        up = glm::cross(n, right);
-        for (const Sample& s : samples) {
-            const glm::vec3 sample_vec = s.tangent.x * right + s.tangent.y * up + s.tangent.z * n;
+        for (const IrradianceSample& s : samples) {
+            const glm::vec3 sample_vec = s.tangent.x * frame.right + s.tangent.y * frame.up + s.tangent.z * frame.n;
             irradiance += environment.sample_bilinear(sample_vec, level) * s.cos_theta * s.sin_theta;
         }
         cube.texel(0, face, x, y) = kPi * irradiance * (1.0f / nr_samples);
@@ -122,66 +206,167 @@ CubeMap convolve_irradiance(const CubeMap& environment, int size) {
     return cube;
 }
 
-CubeMap prefilter_specular(const CubeMap& environment, int size, int levels) {
+// The reference's sums of one pre-filtered texel at roughness > 0.
+glm::vec3 prefilter_texel_reference(const CubeMap& environment, const PrefilterFrame& frame,
+                                    const PrefilterSamples& samples) {
+    const glm::vec3 &normal = frame.normal, r = normal, v = r;
+    glm::vec3 prefiltered(0.0f);
+    float total_weight = 0.0f;
+    for (unsigned i = 0; i < kSampleCount; ++i) {
+        const glm::vec3& ht = samples.tangent_h[i];
+        // sample_to_world with the texel's frame (the same operations).
+        const glm::vec3 h = glm::normalize(frame.tangent * ht.x + frame.bitangent * ht.y + normal * ht.z);
+        const glm::vec3 l = glm::normalize(2.0f * glm::dot(v, h) * h - v);
+        const float n_dot_l = glm::max(glm::dot(normal, l), 0.0f);
+        if (n_dot_l > 0.0f) {
+            prefiltered += environment.sample_trilinear(l, samples.lod[i]) * n_dot_l;
+            total_weight += n_dot_l;
+        }
+    }
+    return prefiltered / total_weight;
+}
+
+CubeMap convolve_irradiance_simd(const CubeMap& environment, int size, simd::Isa isa) {
+    const std::vector<IrradianceSample> samples = irradiance_samples();
+    const float nr_samples = float(samples.size());
+    const int level = int(kIrradianceLod);
+    CubeMap cube(size, 1);
+    const std::size_t texels = std::size_t(kCubeFaces) * std::size_t(size) * std::size_t(size);
+    Lanes frames(texels, 9);
+    for (std::size_t i = 0; i < frames.padded; ++i) {
+        const std::size_t t = i < texels ? i : 0;  // padding lanes repeat texel 0
+        const int face = int(t / (std::size_t(size) * size)), y = int(t / std::size_t(size) % std::size_t(size)),
+                  x = int(t % std::size_t(size));
+        const IrradianceFrame frame = irradiance_frame(face, x, y, size);
+        frames.set3(0, i, frame.n), frames.set3(3, i, frame.right), frames.set3(6, i, frame.up);
+    }
+    Lanes sample_lanes(samples.size(), 5);
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+        sample_lanes.set3(0, s, samples[s].tangent);
+        sample_lanes[3][s] = samples[s].cos_theta, sample_lanes[4][s] = samples[s].sin_theta;
+    }
+    const IrradianceKernelInput in{frames[0], frames[1], frames[2], frames[3], frames[4], frames[5], frames[6],
+                                   frames[7], frames[8], sample_lanes[0], sample_lanes[1], sample_lanes[2],
+                                   sample_lanes[3], sample_lanes[4], samples.size(),
+                                   {&environment.data().front().x, float(environment.size(level)),
+                                    float(environment.level_offset(level))}};
+    Lanes sums(texels, 3);
+    for_each_lane_block(frames.padded, [&](std::size_t first, std::size_t count) {
+        irradiance_sums(isa, in, first, count, {sums[0], sums[1], sums[2], nullptr});
+    });
+    for (std::size_t t = 0; t < texels; ++t) {
+        const int face = int(t / (std::size_t(size) * size)), y = int(t / std::size_t(size) % std::size_t(size)),
+                  x = int(t % std::size_t(size));
+        const glm::vec3 irradiance(sums[0][t], sums[1][t], sums[2][t]);
+        cube.texel(0, face, x, y) = kPi * irradiance * (1.0f / nr_samples);
+    }
+    cube.fill_borders(0);
+    return cube;
+}
+
+// One level (roughness > 0) of prefilter_specular through the SIMD kernel.
+void prefilter_level_simd(const CubeMap& environment, const PrefilterSamples& samples, int mip, simd::Isa isa,
+                          CubeMap& cube) {
+    const int n = cube.size(mip);
+    const std::size_t texels = std::size_t(kCubeFaces) * std::size_t(n) * std::size_t(n);
+    Lanes frames(texels, 9);
+    for (std::size_t i = 0; i < frames.padded; ++i) {
+        const std::size_t t = i < texels ? i : 0;
+        const int face = int(t / (std::size_t(n) * n)), y = int(t / std::size_t(n) % std::size_t(n)), x = int(t % std::size_t(n));
+        const PrefilterFrame frame = prefilter_frame(face, x, y, n);
+        frames.set3(0, i, frame.normal), frames.set3(3, i, frame.tangent), frames.set3(6, i, frame.bitangent);
+    }
+    // CubeMap::sample_trilinear's level choice, per sample.
+    const int top_level = environment.levels() - 1;
+    std::vector<int> level0(kSampleCount);
+    Lanes sample_lanes(kSampleCount, 4);
+    for (unsigned s = 0; s < kSampleCount; ++s) {
+        const float clamped = std::clamp(samples.lod[s], 0.0f, float(top_level));
+        const float l0 = std::min(std::floor(clamped), float(top_level - 1));
+        level0[s] = int(l0);
+        sample_lanes.set3(0, s, samples.tangent_h[s]);
+        sample_lanes[3][s] = clamped - l0;
+    }
+    std::vector<float> level_size(std::size_t(environment.levels())), level_offset(level_size.size());
+    for (int l = 0; l < environment.levels(); ++l)
+        level_size[std::size_t(l)] = float(environment.size(l)), level_offset[std::size_t(l)] = float(environment.level_offset(l));
+    const PrefilterKernelInput in{frames[0], frames[1], frames[2], frames[3], frames[4], frames[5], frames[6], frames[7],
+                                  frames[8], sample_lanes[0], sample_lanes[1], sample_lanes[2], level0.data(),
+                                  sample_lanes[3], kSampleCount, &environment.data().front().x, level_size.data(),
+                                  level_offset.data()};
+    Lanes sums(texels, 4);
+    for_each_lane_block(frames.padded, [&](std::size_t first, std::size_t count) {
+        prefilter_sums(isa, in, first, count, {sums[0], sums[1], sums[2], sums[3]});
+    });
+    for (std::size_t t = 0; t < texels; ++t) {
+        const int face = int(t / (std::size_t(n) * n)), y = int(t / std::size_t(n) % std::size_t(n)), x = int(t % std::size_t(n));
+        const glm::vec3 prefiltered(sums[0][t], sums[1][t], sums[2][t]);
+        cube.texel(mip, face, x, y) = prefiltered / sums[3][t];
+    }
+}
+
+}  // namespace
+
+CubeMap convolve_irradiance(const CubeMap& environment, int size, simd::Isa isa) {
+    if (checked(isa) == simd::Isa::scalar || !float_indices_exact(environment))
+        return convolve_irradiance_reference(environment, size);
+    return convolve_irradiance_simd(environment, size, isa);
+}
+
+CubeMap prefilter_specular(const CubeMap& environment, int size, int levels, simd::Isa isa) {
+    const bool simd = checked(isa) != simd::Isa::scalar && float_indices_exact(environment) && environment.levels() >= 2;
     CubeMap cube(size, levels);
     const float resolution = float(environment.size(0));  // of the source cubemap, per face
     const float sa_texel = 4.0f * kPi / (6.0f * resolution * resolution);
     for (int mip = 0; mip < levels; ++mip) {
         const float roughness = float(mip) / float(levels - 1);
         const int n = cube.size(mip);
-        // The mip level each sample reads depends only on the sample and the
-        // roughness (N = V = R makes D, N·H and H·V the tangent-space H's cos θ),
-        // so it is worked out once per level from the tangent-space sample.
-        std::vector<float> sample_lod(kSampleCount);
-        std::vector<glm::vec3> tangent_h(kSampleCount);
-        for (unsigned i = 0; i < kSampleCount; ++i) {
-            const glm::vec3 z(0.0f, 0.0f, 1.0f);
-            tangent_h[i] = ggx_sample_tangent(hammersley(i, kSampleCount), roughness);
-            const glm::vec3 h = tangent_h[i];
-            const float d = distribution_ggx(z, h, roughness);
-            const float n_dot_h = glm::max(h.z, 0.0f);
-            const float h_dot_v = glm::max(h.z, 0.0f);
-            const float pdf = d * n_dot_h / (4.0f * h_dot_v) + 0.0001f;
-            const float sa_sample = 1.0f / (float(kSampleCount) * pdf + 0.0001f);
-            sample_lod[i] = roughness == 0.0f ? 0.0f : 0.5f * std::log2(sa_sample / sa_texel);
+        if (roughness == 0.0f) {  // every sample is H = L = N at level 0: the sum of equal terms
+            for_each_texel(cube, mip, [&](int face, int x, int y) {
+                cube.texel(mip, face, x, y) =
+                    environment.sample_trilinear(glm::normalize(texel_direction(face, x, y, n)), 0.0f);
+            });
+        } else {
+            const PrefilterSamples samples = prefilter_samples(roughness, sa_texel);
+            if (simd) {
+                prefilter_level_simd(environment, samples, mip, isa, cube);
+            } else {
+                for_each_texel(cube, mip, [&](int face, int x, int y) {
+                    cube.texel(mip, face, x, y) =
+                        prefilter_texel_reference(environment, prefilter_frame(face, x, y, n), samples);
+                });
+            }
         }
-        for_each_texel(cube, mip, [&](int face, int x, int y) {
-            const glm::vec3 normal = glm::normalize(texel_direction(face, x, y, n));
-            const glm::vec3 r = normal, v = r;
-            if (roughness == 0.0f) {  // every sample is H = L = N at level 0: the sum of equal terms
-                cube.texel(mip, face, x, y) = environment.sample_trilinear(normal, 0.0f);
-                return;
-            }
-            glm::vec3 prefiltered(0.0f);
-            float total_weight = 0.0f;
-            // sample_to_world's frame, once per texel (the same operations).
-            const glm::vec3 up = std::fabs(normal.z) < 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-            const glm::vec3 tangent = glm::normalize(glm::cross(up, normal));
-            const glm::vec3 bitangent = glm::cross(normal, tangent);
-            for (unsigned i = 0; i < kSampleCount; ++i) {
-                const glm::vec3& ht = tangent_h[i];
-                const glm::vec3 h = glm::normalize(tangent * ht.x + bitangent * ht.y + normal * ht.z);
-                const glm::vec3 l = glm::normalize(2.0f * glm::dot(v, h) * h - v);
-                const float n_dot_l = glm::max(glm::dot(normal, l), 0.0f);
-                if (n_dot_l > 0.0f) {
-                    prefiltered += environment.sample_trilinear(l, sample_lod[i]) * n_dot_l;
-                    total_weight += n_dot_l;
-                }
-            }
-            cube.texel(mip, face, x, y) = prefiltered / total_weight;
-        });
         cube.fill_borders(mip);
     }
     return cube;
 }
 
-BrdfLut integrate_brdf(int size) {
+BrdfLut integrate_brdf(int size, simd::Isa isa) {
+    const bool simd = checked(isa) != simd::Isa::scalar;
     BrdfLut lut(size);
+    // N·V and V per column, the same on every row.
+    Lanes columns(std::size_t(size), 4);
+    for (std::size_t x = 0; x < columns.padded; ++x) {
+        const float n_dot_v = (float(x < std::size_t(size) ? x : 0) + 0.5f) / float(size);
+        columns[0][x] = n_dot_v;
+        columns.set3(1, x, glm::vec3(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v));
+    }
     tbb::parallel_for(0, size, [&](int y) {
         const float roughness = (float(y) + 0.5f) / float(size);
         const glm::vec3 n(0.0f, 0.0f, 1.0f);
         std::vector<glm::vec3> h(kSampleCount);  // the row's samples: they do not depend on N·V
         for (unsigned i = 0; i < kSampleCount; ++i) h[i] = importance_sample_ggx(hammersley(i, kSampleCount), n, roughness);
+        if (simd) {
+            Lanes samples(kSampleCount, 3), sums(std::size_t(size), 2);
+            for (unsigned i = 0; i < kSampleCount; ++i) samples.set3(0, i, h[i]);
+            const BrdfKernelInput in{columns[0], columns[1], columns[2], columns[3], samples[0], samples[1], samples[2],
+                                     kSampleCount, roughness};
+            brdf_sums(isa, in, columns.padded, sums[0], sums[1]);
+            for (int x = 0; x < size; ++x)
+                lut.texel(x, y) = {sums[0][x] / float(kSampleCount), sums[1][x] / float(kSampleCount)};
+            return;
+        }
         for (int x = 0; x < size; ++x) {
             const float n_dot_v = (float(x) + 0.5f) / float(size);
             const glm::vec3 v(std::sqrt(1.0f - n_dot_v * n_dot_v), 0.0f, n_dot_v);
@@ -211,11 +396,11 @@ BrdfLut integrate_brdf(int size) {
     return lut;
 }
 
-EnvironmentMaps precompute_environment(const EquirectImage& image, std::shared_ptr<const BrdfLut> brdf) {
+EnvironmentMaps precompute_environment(const EquirectImage& image, std::shared_ptr<const BrdfLut> brdf, simd::Isa isa) {
     const CubeMap environment = equirect_to_cubemap(image, kEnvironmentCubeSize);
     EnvironmentMaps maps;
-    maps.irradiance = convolve_irradiance(environment, kIrradianceSize);
-    maps.prefiltered = prefilter_specular(environment, kPrefilterSize, kPrefilterLevels);
+    maps.irradiance = convolve_irradiance(environment, kIrradianceSize, isa);
+    maps.prefiltered = prefilter_specular(environment, kPrefilterSize, kPrefilterLevels, isa);
     maps.background = CubeMap(kEnvironmentCubeSize, 1);
     std::copy(environment.data().begin(), environment.data().begin() + std::ptrdiff_t(maps.background.data().size()),
               maps.background.data().begin());

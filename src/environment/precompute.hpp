@@ -9,6 +9,7 @@
 
 #include "environment/cube_map.hpp"
 #include "environment/equirect_image.hpp"
+#include "simd/isa.hpp"
 
 namespace tessera::environment {
 
@@ -36,12 +37,15 @@ struct EnvironmentMaps {
 
 // equirectangular_to_cubemap.fs into a cube of `size` with its full mip chain (glGenerateMipmap).
 CubeMap equirect_to_cubemap(const EquirectImage& image, int size);
+// The three sample loops below run the chapter's code as plain C++ with
+// `isa` scalar (the reference, slow), else its SIMD kernels
+// (precompute_kernels.hpp), which give the same bits.
 // irradiance_convolution.fs over `environment` (mipmapped), into a cube of `size`.
-CubeMap convolve_irradiance(const CubeMap& environment, int size);
+CubeMap convolve_irradiance(const CubeMap& environment, int size, simd::Isa isa = simd::best_supported_isa());
 // prefilter.fs: level m of the result at roughness m / (levels − 1).
-CubeMap prefilter_specular(const CubeMap& environment, int size, int levels);
+CubeMap prefilter_specular(const CubeMap& environment, int size, int levels, simd::Isa isa = simd::best_supported_isa());
 // brdf.fs: texel (x, y) at N·V = (x + ½)/size, roughness = (y + ½)/size.
-BrdfLut integrate_brdf(int size);
+BrdfLut integrate_brdf(int size, simd::Isa isa = simd::best_supported_isa());
 
 // The chapter's helpers, shared with the tests.
 float radical_inverse_vdc(unsigned bits);
@@ -53,6 +57,7 @@ glm::vec3 sample_to_world(const glm::vec3& h, const glm::vec3& n);
 glm::vec3 importance_sample_ggx(const glm::vec2& xi, const glm::vec3& n, float roughness);
 
 // Every map for one image, the BRDF table being `brdf`.
-EnvironmentMaps precompute_environment(const EquirectImage& image, std::shared_ptr<const BrdfLut> brdf);
+EnvironmentMaps precompute_environment(const EquirectImage& image, std::shared_ptr<const BrdfLut> brdf,
+                                       simd::Isa isa = simd::best_supported_isa());
 
 }  // namespace tessera::environment

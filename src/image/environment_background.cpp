@@ -25,8 +25,7 @@ EnvironmentBackground::EnvironmentBackground(const Scene& scene, float exposure_
 }
 
 glm::vec3 EnvironmentBackground::direction(int x, float ndc_y) const {
-    const float ndc_x = 2.0f * (float(x) + 0.5f) / float(width_) - 1.0f;
-    return forward_ + right_ * ndc_x + up_ * ndc_y;
+    return shade::background_ray({forward_, right_, up_, float(width_), ndc_y}, float(x));
 }
 
 glm::vec3 EnvironmentBackground::radiance(int x, int y) const {
@@ -39,19 +38,19 @@ template <class Covered>
 void EnvironmentBackground::paint_pixels(const raster::TileRect& rect, Covered&& covered, simd::Isa isa,
                                          RenderedImage& image) const {
     constexpr std::size_t kRow = simd::padded_count(raster::kMaxTileSize);
-    float dx[kRow], dy[kRow], dz[kRow], r[kRow], g[kRow], b[kRow];
+    float columns[kRow], r[kRow], g[kRow], b[kRow];
     int column[raster::kMaxTileSize];
+    shade::BackgroundRays rays{forward_, right_, up_, float(width_), 0.0f};
     for (int y = 0; y < rect.height(); ++y) {
         std::size_t n = 0;
-        const float ndc_y = 1.0f - 2.0f * (float(rect.y0 + y) + 0.5f) / float(height_);
+        rays.ndc_y = 1.0f - 2.0f * (float(rect.y0 + y) + 0.5f) / float(height_);
         for (int x = 0; x < rect.width(); ++x) {
             if (covered(x, y)) continue;
-            const glm::vec3 d = direction(rect.x0 + x, ndc_y);
-            dx[n] = d.x, dy[n] = d.y, dz[n] = d.z, column[n] = x;
+            columns[n] = float(rect.x0 + x), column[n] = x;
             ++n;
         }
-        for (std::size_t k = n; k < simd::padded_count(n); ++k) dx[k] = 0.0f, dy[k] = 1.0f, dz[k] = 0.0f;
-        shade::sample_environment_background(isa, n, dx, dy, dz, ibl_, exposure_scale_, {r, g, b});
+        for (std::size_t k = n; k < simd::padded_count(n); ++k) columns[k] = float(rect.x0);
+        shade::sample_environment_background_row(isa, n, columns, rays, ibl_, exposure_scale_, {r, g, b});
         if (n == 0) continue;
         const std::size_t row_first = std::size_t(rect.y0 + y) * std::size_t(image.width) + std::size_t(rect.x0);
         if (!image.radiance.empty())

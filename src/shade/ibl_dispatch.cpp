@@ -8,7 +8,10 @@ namespace tessera::shade {
                                   const RadianceOutputs& out);                                             \
     void sample_environment_background_##suffix(std::size_t count, const float* x, const float* y, const float* z, \
                                                 const CubeArrays& cube, const IblArrays& ibl, float scale,       \
-                                                const RadianceOutputs& out);
+                                                const RadianceOutputs& out);                        \
+    void sample_environment_background_row_##suffix(std::size_t count, const float* column,                   \
+                                                    const BackgroundRays& rays, const CubeArrays& cube,       \
+                                                    const IblArrays& ibl, float scale, const RadianceOutputs& out);
 TESSERA_DECLARE_IBL_ENTRY(sse4)
 TESSERA_DECLARE_IBL_ENTRY(avx2)
 TESSERA_DECLARE_IBL_ENTRY(avx512)
@@ -19,6 +22,7 @@ namespace {
 CubeArrays cube_arrays(const environment::CubeMap& cube) {
     CubeArrays arrays;
     arrays.texels = &cube.data().front().x;
+    arrays.float_count = 3 * cube.data().size();
     arrays.levels = cube.levels();
     for (int l = 0; l < cube.levels() && l < 8; ++l)
         arrays.size[l] = float(cube.size(l)), arrays.offset[l] = float(cube.level_offset(l));
@@ -73,6 +77,28 @@ void sample_environment_background(Isa isa, std::size_t count, const float* x, c
         case Isa::sse4: return sample_environment_background_sse4(count, x, y, z, cube, arrays, scale, out);
         case Isa::avx2: return sample_environment_background_avx2(count, x, y, z, cube, arrays, scale, out);
         case Isa::avx512: return sample_environment_background_avx512(count, x, y, z, cube, arrays, scale, out);
+    }
+}
+
+void sample_environment_background_row(Isa isa, std::size_t count, const float* column, const BackgroundRays& rays,
+                                       const IblLighting& ibl, float scale, const RadianceOutputs& out) {
+    simd::require_supported(isa);
+    if (isa == Isa::scalar) {
+        for (std::size_t i = 0; i < count; ++i) {
+            glm::vec3 value = environment_background(ibl, background_ray(rays, column[i]));
+            if (scale != 1.0f) value = value * scale;
+            out.r[i] = value.r, out.g[i] = value.g, out.b[i] = value.b;
+        }
+        return;
+    }
+    const CubeArrays cube = cube_arrays(ibl.maps->background);
+    IblArrays arrays{};
+    arrays.intensity = ibl.intensity, arrays.cos_rotation = ibl.cos_rotation, arrays.sin_rotation = ibl.sin_rotation;
+    switch (isa) {
+        case Isa::scalar: break;
+        case Isa::sse4: return sample_environment_background_row_sse4(count, column, rays, cube, arrays, scale, out);
+        case Isa::avx2: return sample_environment_background_row_avx2(count, column, rays, cube, arrays, scale, out);
+        case Isa::avx512: return sample_environment_background_row_avx512(count, column, rays, cube, arrays, scale, out);
     }
 }
 

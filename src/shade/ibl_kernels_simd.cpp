@@ -12,75 +12,14 @@
 
 #include "shade/ibl_reference.hpp"
 #include "shade/shade_kernels.hpp"
+#include "environment/cube_map_simd.hpp"
 #include "simd/hardware_gather.hpp"
 
 namespace tessera::shade {
 namespace {
 
-using Arch = TESSERA_SIMD_ARCH;
-using Batch = xsimd::batch<float, Arch>;
+using namespace environment::cube_simd;
 using Int = xsimd::batch<std::int32_t, Arch>;
-using Mask = xsimd::batch_bool<float, Arch>;
-
-struct V3 {
-    Batch x, y, z;
-};
-V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator*(const V3& a, const Batch& s) { return {a.x * s, a.y * s, a.z * s}; }
-V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-// glm's order: (x·x' + y·y') + z·z', no fused operations.
-Batch dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
-V3 normalize(const V3& v) {
-    const Batch inv = Batch(1.0f) / xsimd::sqrt(dot(v, v));  // glm::inversesqrt
-    return v * inv;
-}
-V3 load3(const float* x, const float* y, const float* z, std::size_t i) {
-    return {xsimd::load_unaligned(x + i), xsimd::load_unaligned(y + i), xsimd::load_unaligned(z + i)};
-}
-Batch gather(const float* base, const Batch& index) { return simd::hardware_gather(base, xsimd::to_int(index)); }
-V3 gather3(const float* base, const Batch& index) {
-    return {gather(base, index), gather(base, index + Batch(1.0f)), gather(base, index + Batch(2.0f))};
-}
-
-// environment::face_coords per lane.
-struct Face {
-    Batch face, s, t;
-};
-Face face_coords(const V3& d) {
-    const Batch zero(0.0f);
-    const Batch ax = xsimd::abs(d.x), ay = xsimd::abs(d.y), az = xsimd::abs(d.z);
-    const Mask is_x = (ax >= ay) && (ax >= az);
-    const Mask is_y = !is_x && (ay >= az);
-    const Mask x_pos = d.x >= zero, y_pos = d.y >= zero, z_pos = d.z >= zero;
-    const Batch face = xsimd::select(is_x, xsimd::select(x_pos, Batch(0.0f), Batch(1.0f)),
-                                     xsimd::select(is_y, xsimd::select(y_pos, Batch(2.0f), Batch(3.0f)),
-                                                   xsimd::select(z_pos, Batch(4.0f), Batch(5.0f))));
-    const Batch ma = xsimd::select(is_x, ax, xsimd::select(is_y, ay, az));
-    const Batch sc = xsimd::select(is_x, xsimd::select(x_pos, -d.z, d.z),
-                                   xsimd::select(is_y, d.x, xsimd::select(z_pos, d.x, -d.x)));
-    const Batch tc = xsimd::select(is_y, xsimd::select(y_pos, d.z, -d.z), -d.y);
-    return {face, Batch(0.5f) * (sc / ma + Batch(1.0f)), Batch(0.5f) * (tc / ma + Batch(1.0f))};
-}
-
-// CubeMap::sample_bilinear at per-lane level sides n and first-texel offsets.
-V3 sample_bilinear(const float* texels, const Face& c, const Batch& n, const Batch& offset) {
-    const Batch u = c.s * n - Batch(0.5f), v = c.t * n - Batch(0.5f);
-    const Batch x0f = xsimd::floor(u), y0f = xsimd::floor(v);
-    const Batch fx = u - x0f, fy = v - y0f;
-    const Batch last = n - Batch(1.0f);
-    const Batch x0 = xsimd::min(xsimd::max(x0f, Batch(-1.0f)), last);
-    const Batch y0 = xsimd::min(xsimd::max(y0f, Batch(-1.0f)), last);
-    const Batch row = n + Batch(2.0f);
-    const Batch i00 = Batch(3.0f) * (offset + c.face * (row * row) + (y0 + Batch(1.0f)) * row + (x0 + Batch(1.0f)));
-    const V3 t00 = gather3(texels, i00);
-    const V3 t10 = gather3(texels, i00 + Batch(3.0f));
-    const V3 t01 = gather3(texels, i00 + Batch(3.0f) * row);
-    const V3 t11 = gather3(texels, i00 + Batch(3.0f) * row + Batch(3.0f));
-    const V3 top = t00 + (t10 - t00) * fx;
-    const V3 bottom = t01 + (t11 - t01) * fx;
-    return top + (bottom - top) * fy;
-}
 
 // CubeMap::sample_trilinear (levels >= 2).
 V3 sample_trilinear(const CubeArrays& cube, const V3& d, const Batch& lod) {
@@ -90,6 +29,16 @@ V3 sample_trilinear(const CubeArrays& cube, const V3& d, const Batch& lod) {
     const Batch l0 = xsimd::min(xsimd::floor(clamped), Batch(top_level - 1.0f));
     const Batch f = clamped - l0;
     const Batch l1 = l0 + Batch(1.0f);
+#if defined(__AVX512F__)
+    // One material's fragments mostly share a roughness, so a level: the windowed taps.
+    float level;
+    if (lanes_uniform(l0, level)) {
+        const int l = int(level);
+        const V3 a = sample_bilinear_level(cube.texels, cube.float_count, c, cube.size[l], cube.offset[l]);
+        const V3 b = sample_bilinear_level(cube.texels, cube.float_count, c, cube.size[l + 1], cube.offset[l + 1]);
+        return a + (b - a) * f;
+    }
+#endif
     const V3 a = sample_bilinear(cube.texels, c, gather(cube.size, l0), gather(cube.offset, l0));
     const V3 b = sample_bilinear(cube.texels, c, gather(cube.size, l1), gather(cube.offset, l1));
     return a + (b - a) * f;
@@ -106,7 +55,7 @@ void sample_brdf(const IblArrays& ibl, const Batch& u, const Batch& v, Batch& a,
     const Batch y0 = xsimd::min(xsimd::max(y0f, zero), last), y1 = xsimd::min(xsimd::max(y0f + Batch(1.0f), zero), last);
     const auto tap = [&](const Batch& tx, const Batch& ty, Batch& ra, Batch& rb) {
         const Batch index = Batch(2.0f) * (ty * size + tx);
-        ra = gather(ibl.brdf, index), rb = gather(ibl.brdf, index + Batch(1.0f));
+        gather_float_pair(ibl.brdf, index, ra, rb);
     };
     Batch a00, b00, a10, b10, a01, b01, a11, b11;
     tap(x0, y0, a00, b00), tap(x1, y0, a10, b10), tap(x0, y1, a01, b01), tap(x1, y1, a11, b11);
@@ -151,8 +100,8 @@ void ambient_batch(const FragmentInputs& in, std::size_t i, const V3& cam, const
 
     const Batch intensity(ibl.intensity);
     const Face nc = face_coords(environment_direction(ibl, n));
-    const V3 irradiance = sample_bilinear(ibl.irradiance.texels, nc, Batch(ibl.irradiance.size[0]),
-                                          Batch(ibl.irradiance.offset[0])) * intensity;
+    const V3 irradiance = sample_bilinear_level(ibl.irradiance.texels, ibl.irradiance.float_count, nc,
+                                                ibl.irradiance.size[0], ibl.irradiance.offset[0]) * intensity;
     const V3 diffuse = irradiance * albedo;
     const V3 prefiltered =
         sample_trilinear(ibl.prefiltered, environment_direction(ibl, r), roughness * Batch(environment::kMaxReflectionLod)) *
@@ -184,10 +133,29 @@ void TESSERA_SIMD_ENTRY(sample_environment_background)(std::size_t count, const 
                                                        const float* z, const CubeArrays& cube, const IblArrays& ibl,
                                                        float scale, const RadianceOutputs& out) {
     const std::size_t end = padded_count(count);
-    const Batch n(cube.size[0]), offset(cube.offset[0]), intensity(ibl.intensity);
+    const Batch intensity(ibl.intensity);
     for (std::size_t i = 0; i < end; i += Batch::size) {
         const Face c = face_coords(environment_direction(ibl, load3(x, y, z, i)));
-        V3 value = sample_bilinear(cube.texels, c, n, offset) * intensity;
+        V3 value = sample_bilinear_level(cube.texels, cube.float_count, c, cube.size[0], cube.offset[0]) * intensity;
+        if (scale != 1.0f) value = value * Batch(scale);
+        value.x.store_unaligned(out.r + i), value.y.store_unaligned(out.g + i), value.z.store_unaligned(out.b + i);
+    }
+}
+
+void TESSERA_SIMD_ENTRY(sample_environment_background_row)(std::size_t count, const float* column,
+                                                           const BackgroundRays& rays, const CubeArrays& cube,
+                                                           const IblArrays& ibl, float scale, const RadianceOutputs& out) {
+    const std::size_t end = padded_count(count);
+    const Batch intensity(ibl.intensity), width(rays.width), ndc_y(rays.ndc_y);
+    const V3 forward{Batch(rays.forward.x), Batch(rays.forward.y), Batch(rays.forward.z)};
+    const V3 right{Batch(rays.right.x), Batch(rays.right.y), Batch(rays.right.z)};
+    const V3 up{Batch(rays.up.x), Batch(rays.up.y), Batch(rays.up.z)};
+    for (std::size_t i = 0; i < end; i += Batch::size) {
+        // background_ray, operation for operation.
+        const Batch ndc_x = Batch(2.0f) * (xsimd::load_unaligned(column + i) + Batch(0.5f)) / width - Batch(1.0f);
+        const V3 d = (forward + right * ndc_x) + up * ndc_y;
+        const Face c = face_coords(environment_direction(ibl, d));
+        V3 value = sample_bilinear_level(cube.texels, cube.float_count, c, cube.size[0], cube.offset[0]) * intensity;
         if (scale != 1.0f) value = value * Batch(scale);
         value.x.store_unaligned(out.r + i), value.y.store_unaligned(out.g + i), value.z.store_unaligned(out.b + i);
     }

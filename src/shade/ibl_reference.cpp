@@ -57,4 +57,9 @@ glm::vec3 environment_background(const IblLighting& ibl, const glm::vec3& d) {
     return ibl.maps->background.sample_bilinear(environment_direction(ibl, d), 0) * ibl.intensity;
 }
 
+glm::vec3 background_ray(const BackgroundRays& rays, float column) {
+    const float ndc_x = 2.0f * (column + 0.5f) / rays.width - 1.0f;
+    return rays.forward + rays.right * ndc_x + rays.up * rays.ndc_y;
+}
+
 }  // namespace tessera::shade

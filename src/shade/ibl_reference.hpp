@@ -52,9 +52,23 @@ void add_ibl_ambient(Isa isa, const FragmentInputs& in, const glm::vec3& cam_pos
 void sample_environment_background(Isa isa, std::size_t count, const float* x, const float* y, const float* z,
                                    const IblLighting& ibl, float scale, const RadianceOutputs& out);
 
+// The view rays of one image row, as background.vs makes them: through pixel
+// column x (its centre), forward + right·ndc_x + up·ndc_y with
+// ndc_x = 2·(x + ½)/width − 1 (right and up scaled to the image's half extent).
+struct BackgroundRays {
+    glm::vec3 forward, right, up;
+    float width, ndc_y;
+};
+glm::vec3 background_ray(const BackgroundRays& rays, float column);
+// sample_environment_background along background_ray(rays, column[i]) for i <
+// count (column: pixel x as float, padded to padded_count(count)).
+void sample_environment_background_row(Isa isa, std::size_t count, const float* column, const BackgroundRays& rays,
+                                       const IblLighting& ibl, float scale, const RadianceOutputs& out);
+
 // The maps' raw arrays, as the per-ISA kernels take them (plain data only).
 struct CubeArrays {
     const float* texels = nullptr;  // RGB, CubeMap::data()
+    std::size_t float_count = 0;    // 3 · CubeMap::data().size()
     int levels = 0;
     float size[8] = {};    // per level: the face side
     float offset[8] = {};  // per level: the first texel's index (exact in float: < 2^24)

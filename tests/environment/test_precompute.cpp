@@ -1,8 +1,10 @@
 // LearnOpenGL's IBL pre-computation (src/environment/precompute.cpp), at small
 // sizes: known integrals of a uniform environment, the chapter's Hammersley
-// points and BRDF table, and the same bits on 1 and 2 threads.
+// points and BRDF table, the SIMD kernels' maps against the scalar reference's
+// (the same bits, every ISA this CPU runs), and the same bits on 1 and 2 threads.
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include <doctest/doctest.h>
 #include <tbb/task_arena.h>
@@ -10,6 +12,7 @@
 #include "environment/precompute.hpp"
 
 using namespace tessera::environment;
+using tessera::simd::Isa;
 
 namespace {
 
@@ -31,7 +34,36 @@ EquirectImage sky_image() {
     return image;
 }
 
+// A sky with random texels, so that neighbouring taps differ.
+EquirectImage noisy_sky_image() {
+    EquirectImage image = sky_image();
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> scale(0.25f, 4.0f);
+    for (glm::vec3& texel : image.rgb) texel *= glm::vec3(scale(random), scale(random), scale(random));
+    return image;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
 }  // namespace
+
+TEST_CASE("precompute: every ISA's kernels give the scalar reference's irradiance, pre-filtered and BRDF maps") {
+    const CubeMap environment = equirect_to_cubemap(noisy_sky_image(), 32);
+    // Sizes whose texel counts are and are not multiples of a vector.
+    const CubeMap irradiance = convolve_irradiance(environment, 3, Isa::scalar);
+    const CubeMap prefiltered = prefilter_specular(environment, 12, 5, Isa::scalar);
+    const BrdfLut brdf = integrate_brdf(20, Isa::scalar);
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!tessera::simd::isa_supported(isa)) continue;
+        INFO(tessera::simd::isa_name(isa));
+        CHECK(same_bits(convolve_irradiance(environment, 3, isa).data(), irradiance.data()));
+        CHECK(same_bits(prefilter_specular(environment, 12, 5, isa).data(), prefiltered.data()));
+        CHECK(same_bits(integrate_brdf(20, isa).data(), brdf.data()));
+    }
+}
 
 TEST_CASE("precompute: Hammersley points are the chapter's radical inverse") {
     CHECK(radical_inverse_vdc(0) == 0.0f);

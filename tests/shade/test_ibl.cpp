@@ -164,3 +164,90 @@ TEST_CASE("IBL background: every ISA gives the scalar sampler's bits, times the 
         CHECK(std::memcmp(actual.b.data(), expected.b.data(), n * 4) == 0);
     }
 }
+
+// Directions along short random lines, a vector's worth each (16 lanes): the
+// neighbouring taps the AVX-512 kernels read through windows of texel rows
+// (environment/cube_map_simd.hpp), some lines crossing a texel row or a face.
+static std::vector<glm::vec3> coherent_directions(std::mt19937& random, std::size_t lines, float step) {
+    std::uniform_real_distribution<float> start(-1.0f, 1.0f), slope(-1.0f, 1.0f);
+    std::vector<glm::vec3> d;
+    for (std::size_t line = 0; line < lines; ++line) {
+        const glm::vec3 origin = glm::normalize(glm::vec3(start(random), start(random), start(random)));
+        const glm::vec3 along = glm::vec3(slope(random), slope(random) * 0.2f, slope(random)) * step;
+        for (int i = 0; i < 16; ++i) d.push_back(origin + along * float(i));
+    }
+    return d;
+}
+
+TEST_CASE("IBL kernels: neighbouring lanes (windowed taps) give the scalar reference's bits too") {
+    std::mt19937 random(33);
+    environment::EnvironmentMaps maps = random_maps(random);
+    maps.background = environment::CubeMap(32, 1);
+    std::uniform_real_distribution<float> value(0.0f, 10.0f);
+    for (glm::vec3& t : maps.background.data()) t = {value(random), value(random), value(random)};
+    maps.background.fill_borders(0);
+    IblLighting ibl = ibl_lighting(EnvironmentLight{});
+    ibl.maps = &maps;
+    // The background: rows of view rays.
+    const std::vector<glm::vec3> rays = coherent_directions(random, 64, 0.01f);
+    const std::size_t n = rays.size();
+    std::vector<float> x(n), y(n), z(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = rays[i].x, y[i] = rays[i].y, z[i] = rays[i].z;
+    Outputs expected(n);
+    sample_environment_background(Isa::scalar, n, x.data(), y.data(), z.data(), ibl, 1.0f, expected.outputs());
+    // Surfaces: normals along lines, one roughness per vector (one level of the pre-filtered map).
+    Fragments fragments(n, random);
+    const std::vector<glm::vec3> normals = coherent_directions(random, 64, 0.02f);
+    for (std::size_t i = 0; i < n; ++i) {
+        fragments.c[0][i] = normals[i].x, fragments.c[1][i] = normals[i].y, fragments.c[2][i] = normals[i].z;
+        fragments.c[3][i] = normals[i].x, fragments.c[4][i] = normals[i].y, fragments.c[5][i] = normals[i].z;
+        fragments.c[10][i] = fragments.c[10][i / 16 * 16];
+    }
+    const glm::vec3 cam(0.0f, 0.0f, 0.0f);  // at the centre: V = −N, R = −N
+    Outputs shaded(n);
+    add_ibl_ambient(Isa::scalar, fragments.inputs(), cam, ibl, shaded.outputs());
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!isa_supported(isa)) continue;
+        INFO(isa_name(isa));
+        Outputs background(n), ambient(n);
+        sample_environment_background(isa, n, x.data(), y.data(), z.data(), ibl, 1.0f, background.outputs());
+        add_ibl_ambient(isa, fragments.inputs(), cam, ibl, ambient.outputs());
+        CHECK(std::memcmp(background.r.data(), expected.r.data(), n * 4) == 0);
+        CHECK(std::memcmp(background.g.data(), expected.g.data(), n * 4) == 0);
+        CHECK(std::memcmp(background.b.data(), expected.b.data(), n * 4) == 0);
+        CHECK(std::memcmp(ambient.r.data(), shaded.r.data(), n * 4) == 0);
+        CHECK(std::memcmp(ambient.g.data(), shaded.g.data(), n * 4) == 0);
+        CHECK(std::memcmp(ambient.b.data(), shaded.b.data(), n * 4) == 0);
+    }
+}
+
+TEST_CASE("IBL background rows: every ISA gives background_ray's scalar bits, gaps and all") {
+    std::mt19937 random(41);
+    environment::EnvironmentMaps maps = random_maps(random);
+    maps.background = environment::CubeMap(64, 1);
+    std::uniform_real_distribution<float> value(0.0f, 10.0f);
+    for (glm::vec3& t : maps.background.data()) t = {value(random), value(random), value(random)};
+    maps.background.fill_borders(0);
+    IblLighting ibl = ibl_lighting(EnvironmentLight{});
+    ibl.maps = &maps;
+    const BackgroundRays rays{glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f)), {0.76f, 0.0f, 0.2f}, {0.0f, 0.41f, 0.05f},
+                              1280.0f, 0.37f};
+    // A row's uncovered pixels: runs with gaps where a surface covers the row.
+    std::vector<float> columns;
+    for (int x = 0; x < 1280; ++x)
+        if (x % 97 < 60) columns.push_back(float(x));
+    const std::size_t n = columns.size();
+    columns.resize(padded_count(n), 0.0f);
+    Outputs expected(n);
+    sample_environment_background_row(Isa::scalar, n, columns.data(), rays, ibl, 0.5f, expected.outputs());
+    CHECK(expected.g[7] == environment_background(ibl, background_ray(rays, columns[7])).g * 0.5f);
+    for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+        if (!isa_supported(isa)) continue;
+        INFO(isa_name(isa));
+        Outputs actual(n);
+        sample_environment_background_row(isa, n, columns.data(), rays, ibl, 0.5f, actual.outputs());
+        CHECK(std::memcmp(actual.r.data(), expected.r.data(), n * 4) == 0);
+        CHECK(std::memcmp(actual.g.data(), expected.g.data(), n * 4) == 0);
+        CHECK(std::memcmp(actual.b.data(), expected.b.data(), n * 4) == 0);
+    }
+}
