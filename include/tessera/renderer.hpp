@@ -109,6 +109,7 @@ struct FrameStats {
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
     double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk
     double tiles_ms = 0;        // the tile pass: rasterize, shade, resolve, tile by tile
+    double shadow_ms = 0;       // the shadow maps' depth passes (lights with shadows), before the tile pass
     double total_ms = 0;
     // The steps inside the triangle and tile passes: busy time summed over
     // the workers, divided by the thread count, so that they add up to about

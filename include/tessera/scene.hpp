@@ -138,6 +138,13 @@ struct Material {
 
 enum class LightType { point, directional, spot };
 
+// Shadow map limits (Light::shadow_map_size, shadow_filter_radius).
+inline constexpr int kMinShadowMapSize = 16;
+inline constexpr int kMaxShadowMapSize = 8192;
+inline constexpr int kDefaultShadowMapSize = 1024;  // the chapters' SHADOW_WIDTH
+inline constexpr int kMaxShadowFilterRadius = 8;
+inline constexpr int kDefaultShadowFilterRadius = 1;
+
 // A light (docs/reference/pbr_lighting.md). Point and spot lights fall off with the
 // inverse square of distance: radiance arriving at distance d is color / d², so
 // color is in radiance·distance² units; a directional light's color is the
@@ -157,6 +164,16 @@ struct Light {
     // culling skip it wherever no point is within range. Points within range
     // get the light in full. 0 = unlimited, never culled. Point and spot only.
     float range = 0.0f;
+    // Shadow mapping (docs/scene-format.md, src/shade/shadow_maps.hpp): the
+    // light's direct contribution is multiplied by how much of it a depth map
+    // rendered from the light sees reach the point. Directional and spot lights
+    // take one square map of shadow_map_size² texels, point lights a cube of
+    // six; shadow_filter_radius r filters with (2r + 1)² texels (the chapter's
+    // PCF is r = 1) or, for point lights, r × the chapter's 20-sample disk (0:
+    // a single sample).
+    bool shadows = false;
+    int shadow_map_size = kDefaultShadowMapSize;        // kMinShadowMapSize..kMaxShadowMapSize
+    int shadow_filter_radius = kDefaultShadowFilterRadius;  // 0..kMaxShadowFilterRadius
 };
 
 // The irradiance below which a light counts as negligible for range = "auto":

@@ -35,10 +35,12 @@
 #include "raster/triangle_assembly.hpp"
 #include "render/frame_memory.hpp"
 #include "render/huge_pages.hpp"
+#include "render/shadow_pass.hpp"
 #include "shade/alpha_mask.hpp"
 #include "shade/light_culling.hpp"
 #include "shade/material_maps.hpp"
 #include "shade/shade_kernels.hpp"
+#include "shade/shadow_maps.hpp"
 #include "shade/surface_gather_fast.hpp"
 
 namespace tessera {
@@ -81,6 +83,7 @@ struct WorkerScratch {
     // Zeros for the ao channel of the direct-light kernels when an environment
     // gives the ambient term instead (their 0.03·albedo·0 adds exactly 0).
     std::vector<float> zero_ao;
+    std::vector<float> visibility;  // shadowed lights' visibility planes (FragmentInputs::visibility)
     double clip_setup_ms = 0, binning_ms = 0, rasterize_ms = 0, shade_ms = 0, resolve_ms = 0;
 
     void reserve(int tile_side, int msaa) {
@@ -123,6 +126,17 @@ void check_renderable(const Scene& scene) {
     }
     if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
         throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
+    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light& light = scene.lights[l];
+        if (!light.shadows) continue;
+        if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize ||
+            light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius)
+            throw std::invalid_argument("light " + std::to_string(l) + ": shadow map size " +
+                                        std::to_string(light.shadow_map_size) + " or filter radius " +
+                                        std::to_string(light.shadow_filter_radius) + " outside " +
+                                        std::to_string(kMinShadowMapSize) + ".." + std::to_string(kMaxShadowMapSize) +
+                                        " and 0.." + std::to_string(kMaxShadowFilterRadius));
+    }
 }
 
 // Sizes the AOV planes the settings ask for (memory kept from frame to
@@ -215,6 +229,9 @@ struct Renderer::Frame {
     raster::TileBinIndex tile_bins;                // per tile, the chunks' bins that are not empty
     raster::TileGrid grid;
     shade::ShadingLights lights;
+    render::ShadowPass shadow_pass;                       // the shadow maps' depth passes
+    std::vector<shade::ShadowMap> shadow_maps;            // this frame's, kept from frame to frame
+    std::vector<const shade::ShadowMap*> shadow_by_light;  // per scene light, its map or null
     shade::IblLighting ibl;                    // the scene's environment; ibl.maps null = none
     image::EnvironmentBackground background;   // shown where no surface is, if the scene says so
     float exposure_scale = 1.0f;               // 2^Scene::exposure_ev
@@ -333,11 +350,14 @@ const RenderedImage& Renderer::render(const Scene& given) {
         const auto t1 = Clock::now();
         f.cut_into_chunks(scene);
         f.assemble_and_bin(scene);
+        const auto shadow_start = Clock::now();
+        f.shadow_pass.render_maps(f.isa, scene, f.shadow_maps, f.shadow_by_light);
         const auto t2 = Clock::now();
+        f.stats.shadow_ms = ms_between(shadow_start, t2);
         f.render_tiles(scene);
         const auto t3 = Clock::now();
         f.stats.vertex_ms = ms_between(t0, t1);
-        f.stats.triangles_ms = ms_between(t1, t2);
+        f.stats.triangles_ms = ms_between(t1, shadow_start);
         f.stats.tiles_ms = ms_between(t2, t3);
         f.stats.total_ms = ms_between(t0, t3);
         if (f.settings.profile) f.collect_profile(t1, t2, t3);
@@ -511,6 +531,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     size_aov_planes(settings.aovs, pixels, image.aov);
     view_depth = image::ViewDepth(view_matrix(scene.camera));
     lights.assign(scene.camera.position, scene.lights);
+    lights.assign_shadows(shadow_by_light);
     ibl = scene.environment.present() ? shade::ibl_lighting(scene.environment) : shade::IblLighting{};
     exposure_scale = scene.exposure_ev == 0.0f ? 1.0f : std::exp2(scene.exposure_ev);
     background = image::EnvironmentBackground(scene, exposure_scale);
@@ -805,6 +826,12 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
         // With an environment the direct-light kernels see ao = 0, so that they
         // give Lo alone; the IBL ambient is added after (ambient + Lo, as pbr.fs).
         shade::FragmentInputs direct = inputs;
+        if (lights.shadowed_count() > 0) {  // each shadowed light's visibility, scaling its share of Lo
+            const std::size_t stride = shade::padded_count(count);
+            if (s.visibility.size() < stride * lights.shadowed_count()) s.visibility.resize(stride * lights.shadowed_count());
+            shade::shadow_visibility_planes(inputs, lights, s.visibility.data(), stride);
+            direct.visibility = s.visibility.data(), direct.visibility_stride = stride;
+        }
         if (with_ibl) {
             if (s.zero_ao.size() < shade::padded_count(count)) s.zero_ao.assign(shade::padded_count(count), 0.0f);
             direct.ao = s.zero_ao.data();
@@ -816,7 +843,7 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
             s.fragment_lights += work.fragment_lights;
         } else {
             if (with_ibl) shade::shade_fragments(isa, direct, lights, s.fragments.outputs());
-            else shade::shade_fragment_runs(isa, inputs, s.material_runs, lights, s.fragments.outputs());
+            else shade::shade_fragment_runs(isa, direct, s.material_runs, lights, s.fragments.outputs());
             s.tile_light_count = std::uint32_t(lights.count());
             s.fragment_lights += count * lights.count();
         }

@@ -67,7 +67,8 @@ public:
         : TomlReader(std::move(source)), base_dir_(std::filesystem::path(this->source()).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
-        check_keys(root, "", {"output", "camera", "lights", "environment", "materials", "objects", "models", "animation"});
+        check_keys(root, "", {"output", "camera", "lights", "shadows", "environment", "materials", "objects", "models",
+                              "animation"});
         Scene scene;
         scene.source = source();
         if (const toml::node* output = root.get("output")) {
@@ -76,6 +77,7 @@ public:
         const toml::node* camera = root.get("camera");
         if (camera == nullptr) fail("missing required table [camera]");
         scene.camera = read_camera(table_of(*camera, "camera"));
+        if (const toml::node* shadows = root.get("shadows")) read_shadow_defaults(table_of(*shadows, "shadows"));
         if (const toml::node* lights = root.get("lights")) read_lights(*lights, scene);
         if (const toml::node* environment = root.get("environment"))
             read_environment(table_of(*environment, "environment"), scene);
@@ -244,13 +246,44 @@ private:
         return degrees;
     }
 
+    // [shadows]: what every light of the file (its own and its models') takes
+    // unless it says otherwise.
+    void read_shadow_defaults(const toml::table& table) {
+        check_keys(table, "shadows", {"enabled", "map_size", "filter_radius"});
+        if (const toml::node* n = table.get("enabled")) shadow_defaults_.shadows = read_bool(*n, "shadows.enabled");
+        read_shadow_settings(table, "shadows", "map_size", "filter_radius", shadow_defaults_);
+    }
+
+    void read_shadow_settings(const toml::table& table, const std::string& name, std::string_view size_key,
+                              std::string_view radius_key, Light& light) const {
+        if (const toml::node* n = table.get(size_key)) {
+            const std::int64_t size = read_integer(*n, child(name, size_key));
+            if (size < kMinShadowMapSize || size > kMaxShadowMapSize)
+                fail_at(n->source(), "expected '" + child(name, size_key) + "' to be in " +
+                                         std::to_string(kMinShadowMapSize) + ".." + std::to_string(kMaxShadowMapSize) +
+                                         " texels, got " + std::to_string(size));
+            light.shadow_map_size = int(size);
+        }
+        if (const toml::node* n = table.get(radius_key)) {
+            const std::int64_t radius = read_integer(*n, child(name, radius_key));
+            if (radius < 0 || radius > kMaxShadowFilterRadius)
+                fail_at(n->source(), "expected '" + child(name, radius_key) + "' to be in 0.." +
+                                         std::to_string(kMaxShadowFilterRadius) + ", got " + std::to_string(radius));
+            light.shadow_filter_radius = int(radius);
+        }
+    }
+
     void read_lights(const toml::node& node, Scene& scene) const {
         const toml::array& lights = array_of(node, "lights");
         for (std::size_t i = 0; i < lights.size(); ++i) {
             const std::string name = "lights[" + std::to_string(i) + "]";
             const toml::table& table = table_of(*lights.get(i), name);
-            check_keys(table, name, {"type", "position", "color", "direction", "inner_cone", "outer_cone", "range"});
+            check_keys(table, name, {"type", "position", "color", "direction", "inner_cone", "outer_cone", "range",
+                                     "shadows", "shadow_map_size", "shadow_filter_radius"});
             Light light;
+            apply_shadow_defaults(light);
+            if (const toml::node* n = table.get("shadows")) light.shadows = read_bool(*n, child(name, "shadows"));
+            read_shadow_settings(table, name, "shadow_map_size", "shadow_filter_radius", light);
             light.type = read_light_type(table, name);
             const std::string_view type_text = light.type == LightType::point         ? "point"
                                                : light.type == LightType::directional ? "directional"
@@ -576,6 +609,7 @@ private:
             std::uint32_t entry_id = 1;
             for (const Object& object : scene.objects) entry_id = std::max(entry_id, object.id + 1);
             append_gltf_content(scene, *content, placement, with_lights);
+            for (std::size_t l = first_light; l < scene.lights.size(); ++l) apply_shadow_defaults(scene.lights[l]);
             for (std::size_t o = first_object; o < scene.objects.size(); ++o) scene.objects[o].id = entry_id;
             // A finite placement of a finite node can still overflow (1e30 · 1e30).
             bool finite = true;
@@ -633,6 +667,12 @@ private:
     std::map<std::string, std::int32_t> texture_indices_;            // path and colour space -> index in textures_
     ModelCache* models_ = nullptr;  // where [[models]] files come from; null: own_models_
     mutable ModelCache own_models_;  // this scene's alone: a file placed twice is still read once
+    Light shadow_defaults_;  // [shadows]: its shadows, shadow_map_size and shadow_filter_radius
+    void apply_shadow_defaults(Light& light) const {
+        light.shadows = shadow_defaults_.shadows;
+        light.shadow_map_size = shadow_defaults_.shadow_map_size;
+        light.shadow_filter_radius = shadow_defaults_.shadow_filter_radius;
+    }
 };
 
 }  // namespace

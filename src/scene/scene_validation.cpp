@@ -92,6 +92,14 @@ void validate_lights_and_materials(const Scene& scene) {
         if (!(light.range >= 0.0f) || !std::isfinite(light.range)) {
             fail(scene, "lights[", i, "]: range must be finite and >= 0 (0 = unlimited)");
         }
+        if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize) {
+            fail(scene, "lights[", i, "]: shadow_map_size must be in ", kMinShadowMapSize, "..", kMaxShadowMapSize,
+                 " texels, not ", light.shadow_map_size);
+        }
+        if (light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius) {
+            fail(scene, "lights[", i, "]: shadow_filter_radius must be in 0..", kMaxShadowFilterRadius, ", not ",
+                 light.shadow_filter_radius);
+        }
     }
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];

@@ -131,11 +131,13 @@ CulledWork shade_fragments_culled(Isa isa, const FragmentInputs& in, const Shadi
     work.tile_lights = scratch.tile.count();
     for (std::size_t begin = 0; begin < in.count; begin += kClusterFragments) {
         const std::size_t count = std::min(kClusterFragments, in.count - begin);
-        const FragmentInputs cluster{count,
-                                     in.world_x + begin,  in.world_y + begin,  in.world_z + begin,
-                                     in.normal_x + begin, in.normal_y + begin, in.normal_z + begin,
-                                     in.albedo_r + begin, in.albedo_g + begin, in.albedo_b + begin,
-                                     in.metallic + begin, in.roughness + begin, in.ao + begin};
+        FragmentInputs cluster{count,
+                               in.world_x + begin,  in.world_y + begin,  in.world_z + begin,
+                               in.normal_x + begin, in.normal_y + begin, in.normal_z + begin,
+                               in.albedo_r + begin, in.albedo_g + begin, in.albedo_b + begin,
+                               in.metallic + begin, in.roughness + begin, in.ao + begin};
+        if (in.visibility != nullptr)
+            cluster.visibility = in.visibility + begin, cluster.visibility_stride = in.visibility_stride;
         select_reaching(lights, scratch.tile, fragment_bounds(cluster), scratch.cluster);
         work.fragment_lights += count * scratch.cluster.count();
         shade_fragments_in_range(isa, cluster, lights, scratch.cluster,

@@ -83,6 +83,14 @@ glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const M
     return ambient_radiance(material) + lo;
 }
 
+glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                    const glm::vec3& cam_pos, std::span<const Light> lights, std::span<const float> visibility) {
+    const ShadingPoint p = shading_point(world_pos, normal, material, cam_pos);
+    glm::vec3 lo(0.0f);
+    for (std::size_t k = 0; k < lights.size(); ++k) lo += visibility[k] * reflected_radiance(p, lights[k]);
+    return ambient_radiance(material) + lo;
+}
+
 float distance_squared(const glm::vec3& a, const glm::vec3& b) {
     const glm::vec3 d = a - b;
     return (d.x * d.x + d.y * d.y) + d.z * d.z;

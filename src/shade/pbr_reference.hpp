@@ -38,6 +38,12 @@ IncidentLight incident_light(const Light& light, const glm::vec3& world_pos);
 glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
                     const glm::vec3& cam_pos, std::span<const Light> lights);
 
+// shade_pbr with shadows: light k's share of Lo times visibility[k], 1 − the
+// shadow chapters' `shadow` (shadow_maps.hpp), as their
+// ambient + (1.0 − shadow) · (diffuse + specular).
+glm::vec3 shade_pbr(const glm::vec3& world_pos, const glm::vec3& normal, const Material& material,
+                    const glm::vec3& cam_pos, std::span<const Light> lights, std::span<const float> visibility);
+
 // |a − b|² as (dx² + dy²) + dz² in float, the order the SIMD kernels use too
 // (without fused multiply-adds), so that every path draws a range's edge alike.
 float distance_squared(const glm::vec3& a, const glm::vec3& b);

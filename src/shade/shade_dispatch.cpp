@@ -54,6 +54,9 @@ void clear_columns(ShadingLights& soa) {
                                        &soa.range, &soa.range_sq})
         column->clear();
     soa.records.clear();
+    soa.scene_index.clear();
+    soa.shadow_slot.clear();
+    soa.shadow_maps.clear();
     soa.spot_begin = soa.directional_begin = 0;
     soa.any_range = false;
 }
@@ -65,6 +68,8 @@ void ShadingLights::reserve(std::size_t capacity) {
                                        &cos_outer, &inv_cone_width, &range, &range_sq})
         column->reserve(capacity);
     records.reserve(capacity);
+    scene_index.reserve(capacity);
+    shadow_slot.reserve(capacity);
 }
 
 void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Light> lights) {
@@ -74,11 +79,21 @@ void ShadingLights::assign(const glm::vec3& camera_position, std::span<const Lig
     for (const LightType type : {LightType::point, LightType::spot, LightType::directional}) {
         if (type == LightType::spot) spot_begin = count();
         if (type == LightType::directional) directional_begin = count();
-        for (const Light& light : lights)
-            if (light.type == type) push_light(*this, light);
+        for (std::size_t i = 0; i < lights.size(); ++i)
+            if (lights[i].type == type) push_light(*this, lights[i]), scene_index.push_back(std::uint32_t(i));
     }
+    shadow_slot.assign(count(), -1);
     for (const float r : range) any_range = any_range || r > 0.0f;
     every.assign_all(*this);
+}
+
+void ShadingLights::assign_shadows(std::span<const ShadowMap* const> by_scene_light) {
+    shadow_maps.clear();
+    for (std::size_t j = 0; j < count(); ++j) {
+        const ShadowMap* map = scene_index[j] < by_scene_light.size() ? by_scene_light[scene_index[j]] : nullptr;
+        shadow_slot[j] = map != nullptr ? std::int32_t(shadow_maps.size()) : -1;
+        if (map != nullptr) shadow_maps.push_back(map);
+    }
 }
 
 void LightSelection::push(const ShadingLights& lights, std::uint32_t entry) {
@@ -101,13 +116,23 @@ namespace {
 
 glm::vec3 load_vec3(const float* x, const float* y, const float* z, std::size_t i) { return {x[i], y[i], z[i]}; }
 
+// Light j's visibility of fragment i (1 without a shadow map).
+float visibility_of(const FragmentInputs& in, const ShadingLights& lights, std::size_t j, std::size_t i) {
+    if (in.visibility == nullptr || lights.shadow_slot[j] < 0) return 1.0f;
+    return in.visibility[std::size_t(lights.shadow_slot[j]) * in.visibility_stride + i];
+}
+
 void shade_fragments_scalar(const FragmentInputs& in, const ShadingLights& lights, const RadianceOutputs& out) {
+    std::vector<float> visibility(in.visibility != nullptr ? lights.count() : 0);
     for (std::size_t i = 0; i < in.count; ++i) {
         const Material material{.albedo = load_vec3(in.albedo_r, in.albedo_g, in.albedo_b, i), .metallic = in.metallic[i],
                                 .roughness = in.roughness[i], .ao = in.ao[i]};
+        for (std::size_t j = 0; j < visibility.size(); ++j) visibility[j] = visibility_of(in, lights, j, i);
+        const glm::vec3 world_pos = load_vec3(in.world_x, in.world_y, in.world_z, i);
+        const glm::vec3 normal = load_vec3(in.normal_x, in.normal_y, in.normal_z, i);
         const glm::vec3 radiance =
-            shade_pbr(load_vec3(in.world_x, in.world_y, in.world_z, i),
-                      load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos, lights.records);
+            in.visibility != nullptr ? shade_pbr(world_pos, normal, material, lights.cam_pos, lights.records, visibility)
+                                     : shade_pbr(world_pos, normal, material, lights.cam_pos, lights.records);
         out.r[i] = radiance.r;
         out.g[i] = radiance.g;
         out.b[i] = radiance.b;
@@ -125,8 +150,11 @@ void shade_fragments_in_range_scalar(const FragmentInputs& in, const ShadingLigh
             shading_point(world_pos, load_vec3(in.normal_x, in.normal_y, in.normal_z, i), material, lights.cam_pos);
         glm::vec3 lo(0.0f);
         for (const std::uint32_t entry : selection.index) {
-            const Light& light = lights.records[entry & kLightIndexMask];  // tested whatever kReachesAll says
-            if (light_reaches(light, world_pos)) lo += reflected_radiance(p, light);
+            const std::size_t j = entry & kLightIndexMask;
+            const Light& light = lights.records[j];  // tested whatever kReachesAll says
+            if (!light_reaches(light, world_pos)) continue;
+            if (in.visibility != nullptr) lo += visibility_of(in, lights, j, i) * reflected_radiance(p, light);
+            else lo += reflected_radiance(p, light);
         }
         const glm::vec3 radiance = ambient_radiance(material) + lo;
         out.r[i] = radiance.r;
@@ -149,7 +177,7 @@ LightArrays light_arrays(const ShadingLights& lights) {
             lights.pos_y.data(),        lights.pos_z.data(),      lights.color_r.data(), lights.color_g.data(),
             lights.color_b.data(),      lights.dir_x.data(),      lights.dir_y.data(),   lights.dir_z.data(),
             lights.cos_outer.data(),    lights.inv_cone_width.data(), lights.range.data(), lights.range_sq.data(),
-            nullptr};
+            nullptr,                    lights.shadow_maps.empty() ? nullptr : lights.shadow_slot.data()};
 }
 
 }  // namespace

@@ -36,6 +36,11 @@ struct FragmentInputs {
     const float* metallic = nullptr;
     const float* roughness = nullptr;
     const float* ao = nullptr;
+    // Shadows (shadow_maps.hpp): light j's visibility of fragment i is
+    // visibility[slot · visibility_stride + i], slot = ShadingLights::shadow_slot[j],
+    // for the lights that have a slot; null where no light casts shadows.
+    const float* visibility = nullptr;
+    std::size_t visibility_stride = 0;
 };
 
 // Fragments [begin, end) of a FragmentBuffer (surface_gather.hpp) that share one material.
@@ -56,6 +61,7 @@ struct RadianceOutputs {
 };
 
 struct ShadingLights;
+struct ShadowMap;
 
 // Some of a ShadingLights' lights: indices into it, in its type-group order,
 // and where the spots and directionals begin among them (light culling). An
@@ -99,10 +105,19 @@ struct ShadingLights {
     std::vector<Light> records;                // the same lights as given, for the scalar path
     bool any_range = false;                    // whether culling could drop any light at all
     LightSelection every;                      // every light, where light culling starts
+    std::vector<std::uint32_t> scene_index;    // each light's index in the scene's list
+    // Shadows: per light, its slot among the shadowed lights (FragmentInputs::visibility)
+    // or -1; per slot, its map.
+    std::vector<std::int32_t> shadow_slot;
+    std::vector<const ShadowMap*> shadow_maps;
 
     std::size_t count() const { return pos_x.size(); }
-    // Every light of `lights`, in type groups.
+    std::size_t shadowed_count() const { return shadow_maps.size(); }
+    // Every light of `lights`, in type groups, none shadowed.
     void assign(const glm::vec3& camera_position, std::span<const Light> lights);
+    // The maps of the scene's lights (by_scene_light[scene index], null: no
+    // shadow), after assign.
+    void assign_shadows(std::span<const ShadowMap* const> by_scene_light);
     // Room for `capacity` lights, so that later assigns and culls up to that count allocate nothing.
     void reserve(std::size_t capacity);
 };
@@ -116,6 +131,7 @@ struct LightArrays {
     const float *pos_x, *pos_y, *pos_z, *color_r, *color_g, *color_b, *dir_x, *dir_y, *dir_z, *cos_outer,
         *inv_cone_width, *range, *range_sq;
     const std::uint32_t* index;
+    const std::int32_t* shadow_slot = nullptr;  // ShadingLights::shadow_slot; null when no light is shadowed
 };
 
 // Which code runs the kernels. `scalar` calls the reference shader per fragment.

@@ -77,6 +77,10 @@ struct Surface {
     Batch a2_minus_1;      // a² − 1 of distribution_ggx
     Batch k, one_minus_k;  // geometry_schlick_ggx's k
     Batch four_n_dot_v;
+    // The batch's shadow visibility planes (FragmentInputs::visibility from this
+    // batch's first fragment), or null.
+    const float* visibility = nullptr;
+    std::size_t visibility_stride = 0;
 };
 
 // One light's share of a batch, per unit of light colour: E·(1 − w), E·spec' and
@@ -207,9 +211,26 @@ template <LightKind Kind, class Lights>
 template <class Lights>
 inline constexpr bool grey_lights = false;
 
-// sums += light j's colour × its terms.
+// Light j's terms times its shadow visibility, where it has a shadow map (the
+// reference's visibility · reflected_radiance); the terms themselves otherwise.
+// Fixed point-light lists (BroadcastPoints) are never shadowed.
 template <class Lights>
-[[gnu::always_inline]] inline void add(Sums& sums, const Lights& lights, std::size_t j, const LightTerms& t) {
+[[gnu::always_inline]] inline LightTerms shadowed(const LightTerms& t, const Surface& s, const Lights& lights,
+                                                  std::size_t j) {
+    if constexpr (requires { lights.shadow_slot; }) {
+        if (s.visibility != nullptr && lights.shadow_slot != nullptr && lights.shadow_slot[j] >= 0) {
+            const Batch v = xsimd::load_unaligned(s.visibility + std::size_t(lights.shadow_slot[j]) * s.visibility_stride);
+            return {t.diffuse * v, t.specular * v, t.specular_w * v};
+        }
+    }
+    return t;
+}
+
+// sums += light j's colour × its terms (times its shadow visibility).
+template <class Lights>
+[[gnu::always_inline]] inline void add(Sums& sums, const Surface& s, const Lights& lights, std::size_t j,
+                                       const LightTerms& unshadowed) {
+    const LightTerms t = shadowed(unshadowed, s, lights, j);
     if constexpr (grey_lights<Lights>) {
         const Batch c(lights.color_r[j]);
         sums.diffuse.x = fma(c, t.diffuse, sums.diffuse.x);
@@ -243,15 +264,15 @@ template <bool InRange, LightKind Kind, class Lights>
             if (!xsimd::any(reach0 | reach1)) return;
             const LightTerms t0 = masked(terms_of<Kind>(s, lights, j0, to0, distance_sq0), reach0);
             const LightTerms t1 = masked(terms_of<Kind>(s, lights, j1, to1, distance_sq1), reach1);
-            add(sums, lights, j0, t0);
-            add(sums, lights, j1, t1);
+            add(sums, s, lights, j0, t0);
+            add(sums, s, lights, j1, t1);
             return;
         }
     }
     const LightTerms t0 = terms_of<Kind>(s, lights, j0, to0, distance_sq0);
     const LightTerms t1 = terms_of<Kind>(s, lights, j1, to1, distance_sq1);
-    add(sums, lights, j0, t0);
-    add(sums, lights, j1, t1);
+    add(sums, s, lights, j0, t0);
+    add(sums, s, lights, j1, t1);
 }
 
 // Light k of the list alone, as add_light_pair.
@@ -265,11 +286,11 @@ template <bool InRange, LightKind Kind, class Lights>
     if constexpr (cut) {
         const Mask reach = reaches(lights, k, j, distance_sq);
         if (!xsimd::all(reach)) {
-            if (xsimd::any(reach)) add(sums, lights, j, masked(terms_of<Kind>(s, lights, j, to, distance_sq), reach));
+            if (xsimd::any(reach)) add(sums, s, lights, j, masked(terms_of<Kind>(s, lights, j, to, distance_sq), reach));
             return;
         }
     }
-    add(sums, lights, j, terms_of<Kind>(s, lights, j, to, distance_sq));
+    add(sums, s, lights, j, terms_of<Kind>(s, lights, j, to, distance_sq));
 }
 
 // Adds the lights [begin, end) of one type group, two at a time.
@@ -324,6 +345,7 @@ template <bool InRange, std::size_t FixedPoints = 0, class Lights = LightArrays>
                                                   const RadianceOutputs& out) {
     Surface s;
     s.world_pos = load3(in.world_x, in.world_y, in.world_z, i);
+    if (in.visibility != nullptr) s.visibility = in.visibility + i, s.visibility_stride = in.visibility_stride;
     const Vec3& albedo = m.albedo;
     const Batch& metallic = m.metallic;
     const Batch& roughness = m.roughness;
@@ -482,7 +504,8 @@ void TESSERA_SIMD_ENTRY(shade_fragment_runs)(const FragmentInputs& in, const Mat
     // A few point lights and nothing else (the reference's scene has four):
     // the list unrolled (add_all_lights). Any list whose lights are all grey
     // (grey_lights; the reference's are white): one channel of sums.
-    const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count;
+    const bool points_only = lights.index == nullptr && lights.spot_begin == lights.count &&
+                             (in.visibility == nullptr || lights.shadow_slot == nullptr);
     const bool grey = all_grey(lights);
     switch (points_only ? lights.count : 0) {
         case 1: return grey ? shade_runs<1, true>(in, runs, run_count, lights, cam, out)

@@ -520,3 +520,136 @@ TEST_CASE("ShadingLights: type groups and per-frame spot constants") {
     CHECK(soa.inv_cone_width[2] == doctest::Approx(2.7320508));
     CHECK_FALSE(soa.any_range);
 }
+
+// Shadows (shade/shadow_maps.hpp): a shadowed light's share of Lo times its
+// visibility. The SIMD kernels against the scalar reference, within the bound
+// above (visibility <= 1 only shrinks each light's share and its error).
+namespace {
+
+struct ShadowedScene {
+    ShadingLights lights;
+    std::vector<float> visibility;  // plane per shadowed light, padded
+    std::size_t stride = 0;
+};
+
+// Every other light (in ShadingLights order) shadowed, its visibility per
+// fragment 0, 1 or some ninths (as the 3×3 filter gives).
+ShadowedScene shadow_every_other_light(std::mt19937& rng, const RandomScene& scene) {
+    ShadowedScene s;
+    s.lights.assign(scene.cam_pos, scene.lights);
+    s.stride = padded_count(scene.fragments.count);
+    std::int32_t slots = 0;
+    for (std::size_t j = 0; j < s.lights.count(); j += 2) s.lights.shadow_slot[j] = slots++;
+    s.lights.shadow_maps.assign(std::size_t(slots), nullptr);  // only their count is read here
+    s.visibility.resize(std::size_t(slots) * s.stride);
+    for (float& v : s.visibility) {
+        const int pick = std::uniform_int_distribution<int>(0, 11)(rng);
+        v = pick <= 1 ? float(pick) : float(pick - 2) / 9.0f;
+    }
+    return s;
+}
+
+FragmentInputs with_visibility(FragmentInputs in, const ShadowedScene& s) {
+    in.visibility = s.visibility.data(), in.visibility_stride = s.stride;
+    return in;
+}
+
+}  // namespace
+
+TEST_CASE("shadow visibility: the scalar path scales each shadowed light's share of Lo") {
+    std::mt19937 rng(32);
+    for (std::size_t count : {1u, 13u, 200u}) {
+        const RandomScene scene = random_scene(rng, count);
+        ShadowedScene s = shadow_every_other_light(rng, scene);
+        Radiance shadowed(count), unshadowed(count);
+        shade_fragments(Isa::scalar, with_visibility(scene.fragments.inputs(), s), s.lights, shadowed.outputs());
+        shade_fragments(Isa::scalar, scene.fragments.inputs(), s.lights, unshadowed.outputs());
+        bool equal = true, all_lit_equal = true;
+        const Fragments& f = scene.fragments;
+        for (std::size_t i = 0; i < count; ++i) {
+            // The reference with each light's visibility, in ShadingLights order.
+            std::vector<float> visibility;
+            for (std::size_t j = 0; j < s.lights.count(); ++j)
+                visibility.push_back(s.lights.shadow_slot[j] >= 0
+                                         ? s.visibility[std::size_t(s.lights.shadow_slot[j]) * s.stride + i]
+                                         : 1.0f);
+            const glm::vec3 expected =
+                shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, s.lights.records, visibility);
+            for (int c = 0; c < 3; ++c) equal = equal && same_bits(shadowed.channel(c, i), expected[c]);
+        }
+        CHECK(equal);
+        // Visibility 1 everywhere: the unshadowed bits.
+        std::fill(s.visibility.begin(), s.visibility.end(), 1.0f);
+        Radiance lit(count);
+        shade_fragments(Isa::scalar, with_visibility(scene.fragments.inputs(), s), s.lights, lit.outputs());
+        for (std::size_t i = 0; i < count; ++i)
+            for (int c = 0; c < 3; ++c) all_lit_equal = all_lit_equal && same_bits(lit.channel(c, i), unshadowed.channel(c, i));
+        CHECK(all_lit_equal);
+    }
+    // The reference overload itself: visibility 1 is shade_pbr's bits, 0 leaves the ambient term.
+    const RandomScene scene = random_scene(rng, 50);
+    const Fragments& f = scene.fragments;
+    bool same = true, dark = true;
+    for (std::size_t i = 0; i < f.count; ++i) {
+        const std::vector<float> ones(scene.lights.size(), 1.0f), zeros(scene.lights.size(), 0.0f);
+        const glm::vec3 plain = shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, scene.lights);
+        const glm::vec3 lit = shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, scene.lights, ones);
+        const glm::vec3 none = shade_pbr(f.world_pos(i), f.normal(i), f.material(i), scene.cam_pos, scene.lights, zeros);
+        const glm::vec3 ambient = ambient_radiance(f.material(i));
+        for (int c = 0; c < 3; ++c) same = same && same_bits(plain[c], lit[c]), dark = dark && same_bits(none[c], ambient[c]);
+    }
+    CHECK(same);
+    CHECK(dark);
+}
+
+TEST_CASE("shadow visibility: SIMD kernels match the scalar reference, and visibility 1 changes no bit") {
+    std::mt19937 rng(3232);
+    const std::vector<std::size_t> sizes = scene_sizes(rng, 30000);
+    for (Isa isa : kSimdIsas) {
+        if (!isa_supported(isa)) {
+            MESSAGE("skipping ", isa_name(isa), ": not supported by this CPU");
+            continue;
+        }
+        CAPTURE(isa_name(isa));
+        std::mt19937 scene_rng(7);
+        std::size_t failures = 0, lit_differences = 0, run_differences = 0, range_differences = 0;
+        for (std::size_t n : sizes) {
+            const RandomScene scene = random_scene(scene_rng, n);
+            ShadowedScene s = shadow_every_other_light(scene_rng, scene);
+            const FragmentInputs in = with_visibility(scene.fragments.inputs(), s);
+            Radiance reference(n), out(n);
+            shade_fragments(Isa::scalar, in, s.lights, reference.outputs());
+            shade_fragments(isa, in, s.lights, out.outputs());
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::dvec3 allowance = conditioning_allowance(scene, i);
+                for (int c = 0; c < 3; ++c) {
+                    const double expected = reference.channel(c, i), actual = out.channel(c, i);
+                    const double bound = kRelTolerance * std::abs(expected) + kAbsTolerance + allowance[c];
+                    if (!(std::abs(actual - expected) <= bound)) ++failures;
+                }
+            }
+            // The same lights through the other entry points: the same bits.
+            Radiance in_range(n);
+            shade_fragments_in_range(isa, in, s.lights, s.lights.every, in_range.outputs());
+            const MaterialRun run{0, std::uint32_t(n), nullptr, false, false};
+            Radiance runs(n);
+            shade_fragment_runs(isa, in, std::span(&run, 1), s.lights, runs.outputs());
+            for (std::size_t i = 0; i < n; ++i)
+                for (int c = 0; c < 3; ++c) {
+                    run_differences += !same_bits(runs.channel(c, i), out.channel(c, i));
+                    range_differences += !same_bits(in_range.channel(c, i), out.channel(c, i));
+                }
+            // Visibility 1: the unshadowed kernel's bits.
+            std::fill(s.visibility.begin(), s.visibility.end(), 1.0f);
+            Radiance lit(n), unshadowed(n);
+            shade_fragments(isa, in, s.lights, lit.outputs());
+            shade_fragments(isa, scene.fragments.inputs(), s.lights, unshadowed.outputs());
+            for (std::size_t i = 0; i < n; ++i)
+                for (int c = 0; c < 3; ++c) lit_differences += !same_bits(lit.channel(c, i), unshadowed.channel(c, i));
+        }
+        CHECK(failures == 0);
+        CHECK(run_differences == 0);
+        CHECK(range_differences == 0);
+        CHECK(lit_differences == 0);
+    }
+}

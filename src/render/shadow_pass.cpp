@@ -1,0 +1,181 @@
+// The depth passes of shadow mapping: the frame's vertex, triangle and tile
+// passes (renderer.cpp) with a light's camera, depth only.
+#include "render/shadow_pass.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "geometry/clipper.hpp"
+#include "geometry/vertex_stage.hpp"
+#include "geometry/viewport.hpp"
+#include "raster/bin_rasterizer.hpp"
+#include "raster/triangle_assembly.hpp"
+#include "render/huge_pages.hpp"
+
+namespace tessera::render {
+
+namespace {
+
+constexpr int kShadowTileSize = 64;
+
+// Whether the box lies wholly outside one of the view's clip planes (then none
+// of its triangles can be drawn): each plane is a half-space of clip space, so
+// a box whose eight corners are all beyond one is beyond it everywhere.
+bool outside_view(const shade::SceneBounds& box, const glm::mat4& view_projection) {
+    std::uint32_t all_outside = 0x3f;
+    for (int c = 0; c < 8 && all_outside != 0; ++c) {
+        const glm::vec3 p((c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+                          (c & 4) ? box.max.z : box.min.z);
+        const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+        const std::uint32_t outside = (clip.x > clip.w ? 1u : 0u) | (clip.x < -clip.w ? 2u : 0u) |
+                                      (clip.y > clip.w ? 4u : 0u) | (clip.y < -clip.w ? 8u : 0u) |
+                                      (clip.z > clip.w ? 16u : 0u) | (clip.z < -clip.w ? 32u : 0u);
+        all_outside &= outside;
+    }
+    return all_outside != 0;
+}
+
+}  // namespace
+
+void ShadowPass::prepare(const Scene& scene) {
+    bounds_ = shade::scene_bounds(scene);
+    object_bounds_.resize(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        object_bounds_[o] = {};
+        const Object& object = scene.objects[o];
+        const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.positions.empty() || !shade::casts_shadow(scene, object) || mesh.topology != Topology::triangles)
+            continue;
+        glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+        for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        shade::SceneBounds& b = object_bounds_[o];
+        b.min = glm::vec3(INFINITY), b.max = glm::vec3(-INFINITY), b.empty = false;
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            const glm::vec3 world = glm::vec3(object.model * glm::vec4(p, 1.0f));
+            b.min = glm::min(b.min, world), b.max = glm::max(b.max, world);
+        }
+    }
+    triangles_drawn_ = 0;
+}
+
+void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4& view_projection, int size,
+                              std::span<float> depth, const shade::ShadowMap* distances) {
+    if (depth.size() != std::size_t(size) * size) throw std::invalid_argument("shadow map storage of the wrong size");
+    std::fill(depth.begin(), depth.end(), 1.0f);
+    // The casters this view can see, in scene order.
+    objects_.clear();
+    for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        if (!object_bounds_[o].empty && !outside_view(object_bounds_[o], view_projection))
+            objects_.push_back(std::uint32_t(o));
+    if (objects_.empty()) return;
+
+    // The vertex pass.
+    first_vertex_.resize(objects_.size());
+    std::size_t total = 0;
+    for (std::size_t e = 0; e < objects_.size(); ++e) {
+        first_vertex_[e] = std::uint32_t(total);
+        total += scene.meshes[scene.objects[objects_[e]].mesh].positions.size();
+    }
+    if (total >= geometry::kClippedVertexBit) throw std::invalid_argument("the scene has too many vertices");
+    reserve_huge(vertices_, total), reserve_huge(outcodes_, total), reserve_huge(screen_, total);
+    vertices_.resize(total), outcodes_.resize(total), screen_.resize(total);
+    const geometry::GuardBand guard(size, size);
+    const geometry::Viewport viewport{size, size};
+    constexpr std::size_t kRun = 4096;
+    tbb::parallel_for(std::size_t(0), objects_.size(), [&](std::size_t e) {
+        const Object& object = scene.objects[objects_[e]];
+        const Mesh& mesh = scene.meshes[object.mesh];
+        tbb::parallel_for(std::size_t(0), mesh.positions.size(), kRun, [&](std::size_t first) {
+            const std::size_t count = std::min(kRun, mesh.positions.size() - first);
+            const std::size_t base = first_vertex_[e] + first;
+            geometry::run_vertex_stage(isa, mesh, first, object.model, view_projection, guard, viewport,
+                                       {{vertices_.data() + base, count}, outcodes_.data() + base, screen_.data() + base});
+        });
+    });
+
+    // The triangle pass: chunks cut as the frame cuts them, clipped, set up and binned.
+    chunk_count_ = 0;
+    chunk_entry_.clear();
+    for (std::size_t e = 0; e < objects_.size(); ++e) {
+        const auto triangles = std::uint32_t(scene.meshes[scene.objects[objects_[e]].mesh].indices.size() / 3);
+        for (std::uint32_t first = 0; first < triangles; first += kChunkTriangles) {
+            if (chunk_count_ >= kMaxChunks) throw std::invalid_argument("the scene has too many triangles");
+            if (chunk_count_ == chunks_.size()) chunks_.emplace_back();
+            Chunk& chunk = chunks_[chunk_count_++];
+            chunk.object = objects_[e];
+            chunk.first_triangle = first;
+            chunk.triangle_count = std::min(kChunkTriangles, triangles - first);
+            chunk_entry_.push_back(std::uint32_t(e));
+        }
+    }
+    grid_ = raster::TileGrid(size, size, kShadowTileSize);
+    const raster::FrameVertices frame{vertices_, outcodes_, screen_};
+    tbb::parallel_for(std::size_t(0), chunk_count_, [&](std::size_t c) {
+        Chunk& chunk = chunks_[c];
+        const Mesh& mesh = scene.meshes[scene.objects[chunk.object].mesh];
+        const std::span<const std::uint32_t> indices(mesh.indices.data() + 3 * std::size_t(chunk.first_triangle),
+                                                     3 * std::size_t(chunk.triangle_count));
+        chunk.assembled.clear();
+        reserve_huge(chunk.assembled.triangles, chunk.triangle_count + raster::kAssemblyRoom);
+        raster::assemble_triangles(isa, indices, first_vertex_[chunk_entry_[c]], std::uint32_t(mesh.positions.size()),
+                                   frame, viewport, guard, chunk.assembled, 1, raster::Culling::none);
+        chunk.bins.build(grid_, chunk.assembled.triangles);
+    });
+    tile_bins_.build(grid_, chunk_count_, [&](std::size_t c) -> const raster::ChunkBins& { return chunks_[c].bins; });
+
+    // The tile pass: nearest depth per texel, copied into the map.
+    tbb::parallel_for(0, grid_.tile_count(), [&](int tile) {
+        const auto entries = tile_bins_.tile(tile);
+        if (entries.empty()) return;
+        raster::TileBuffers& buffers = tiles_.local();
+        buffers.reset(kShadowTileSize);
+        raster::RasterCounters counters;
+        const raster::TileRect rect = grid_.rect(tile);
+        for (const raster::TileBinIndex::Entry& entry : entries) {
+            const Chunk& chunk = chunks_[entry.chunk];
+            const std::span<const std::uint32_t> bin(chunk.bins.items.data() + entry.first, entry.last - entry.first);
+            raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, entry.chunk << kChunkIdShift, rect,
+                                  buffers, counters);
+        }
+        for (int y = rect.y0; y < rect.y1; ++y) {
+            const float* from = buffers.depth.data() + std::size_t(y - rect.y0) * kShadowTileSize;
+            float* to = depth.data() + std::size_t(y) * size + rect.x0;
+            if (distances == nullptr) {
+                std::copy_n(from, rect.width(), to);
+                continue;
+            }
+            for (int x = 0; x < rect.width(); ++x)
+                to[x] = from[x] < 1.0f ? shade::distance_from_window_depth(*distances, from[x], rect.x0 + x, y) : 1.0f;
+        }
+    });
+    for (std::size_t c = 0; c < chunk_count_; ++c) triangles_drawn_ += chunks_[c].assembled.triangles.size();
+}
+
+void ShadowPass::render_maps(simd::Isa isa, const Scene& scene, std::vector<shade::ShadowMap>& maps,
+                             std::vector<const shade::ShadowMap*>& by_light) {
+    std::size_t shadowed = 0;
+    for (const Light& light : scene.lights) shadowed += light.shadows ? 1 : 0;
+    if (maps.size() < shadowed) maps.resize(shadowed);  // never shrunk: the maps keep their memory
+    by_light.assign(scene.lights.size(), nullptr);
+    if (shadowed == 0) return;
+    prepare(scene);
+    std::size_t next = 0;
+    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+        const Light& light = scene.lights[l];
+        if (!light.shadows) continue;
+        shade::ShadowMap& map = maps[next++];
+        shade::plan_shadow_map(scene, bounds_, light, map);
+        const std::size_t face_texels = std::size_t(map.size) * map.size;
+        for (int face = 0; face < map.faces; ++face) {
+            render_depth(isa, scene, map.view_projection[face], map.size,
+                         {map.depth.data() + face * face_texels, face_texels},
+                         map.kind != shade::ShadowMapKind::planar_depth ? &map : nullptr);
+        }
+        by_light[l] = &map;
+    }
+}
+
+}  // namespace tessera::render

@@ -1,0 +1,264 @@
+// The chapters' ShadowCalculation in plain float C++, and the light cameras
+// their demos set by hand, fitted to the scene (shadow_maps.hpp).
+#include "shade/shadow_maps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace tessera::shade {
+
+const std::array<glm::vec3, 20> kGridSamplingDisk = {{
+    {1, 1, 1},  {1, -1, 1},  {-1, -1, 1},  {-1, 1, 1},  {1, 1, -1}, {1, -1, -1}, {-1, -1, -1},
+    {-1, 1, -1}, {1, 1, 0},  {1, -1, 0},   {-1, -1, 0}, {-1, 1, 0}, {1, 0, 1},   {-1, 0, 1},
+    {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},    {0, -1, 1},  {0, -1, -1}, {0, 1, -1},
+}};
+
+bool casts_shadow(const Scene& scene, const Object& object) {
+    return scene.materials[object.material].alpha_mode != AlphaMode::blend;
+}
+
+SceneBounds scene_bounds(const Scene& scene) {
+    SceneBounds bounds;
+    bounds.min = glm::vec3(std::numeric_limits<float>::max());
+    bounds.max = glm::vec3(-std::numeric_limits<float>::max());
+    for (const Object& object : scene.objects) {
+        const Mesh& mesh = scene.meshes[object.mesh];
+        if (mesh.positions.empty() || !casts_shadow(scene, object)) continue;
+        glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+        for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        for (int corner = 0; corner < 8; ++corner) {  // the mesh's box as placed: conservative
+            const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+            const glm::vec3 world = glm::vec3(object.model * glm::vec4(p, 1.0f));
+            bounds.min = glm::min(bounds.min, world), bounds.max = glm::max(bounds.max, world);
+        }
+        bounds.empty = false;
+    }
+    if (bounds.empty) bounds.min = bounds.max = glm::vec3(0.0f);
+    return bounds;
+}
+
+namespace {
+
+glm::vec3 box_corner(const SceneBounds& b, int corner) {
+    return {(corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y, (corner & 4) ? b.max.z : b.min.z};
+}
+
+// An up vector for lookAt along `forward` (unit), never parallel to it.
+glm::vec3 up_for(const glm::vec3& forward) {
+    return std::abs(forward.y) > 0.99f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+// The far plane of a light at `position`: its range, else just past the scene's farthest point.
+float far_plane_from(const SceneBounds& bounds, const glm::vec3& position, float range) {
+    if (range > 0.0f) return range;
+    float farthest = 0.0f;
+    for (int c = 0; c < 8; ++c) farthest = std::max(farthest, glm::length(box_corner(bounds, c) - position));
+    return std::max(farthest * 1.01f, 1e-3f);
+}
+
+struct Interval {
+    float lo = std::numeric_limits<float>::max(), hi = -std::numeric_limits<float>::max();
+    void add(float v) { lo = std::min(lo, v), hi = std::max(hi, v); }
+};
+
+// The directional light's orthographic camera: along the light, its x and y
+// around the scene's bounds where the camera sees them, z around every caster.
+void plan_directional(const Scene& scene, const SceneBounds& bounds, const Light& light, ShadowMap& map) {
+    const glm::vec3 forward = light.direction;
+    const glm::vec3 centre = (bounds.min + bounds.max) * 0.5f;
+    const glm::mat4 view = glm::lookAt(centre - forward, centre, up_for(forward));
+    Interval bx, by, bz;
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 v = glm::vec3(view * glm::vec4(box_corner(bounds, c), 1.0f));
+        bx.add(v.x), by.add(v.y), bz.add(v.z);
+    }
+    // What the camera sees: its frustum, cut at the scene's farthest point ahead of it.
+    Camera seen = scene.camera;
+    const glm::vec3 camera_forward = glm::normalize(seen.target - seen.position);
+    float ahead = 0.0f;
+    for (int c = 0; c < 8; ++c) ahead = std::max(ahead, glm::dot(box_corner(bounds, c) - seen.position, camera_forward));
+    Interval fx = bx, fy = by;
+    if (ahead > seen.near_plane) {
+        seen.far_plane = std::min(seen.far_plane, ahead);
+        const glm::mat4 to_world =
+            glm::inverse(projection_matrix(seen, scene.width, scene.height) * view_matrix(seen));
+        Interval cx, cy;
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec4 ndc((c & 1) ? 1.0f : -1.0f, (c & 2) ? 1.0f : -1.0f, (c & 4) ? 1.0f : -1.0f, 1.0f);
+            const glm::vec4 world = to_world * ndc;
+            const glm::vec3 v = glm::vec3(view * glm::vec4(glm::vec3(world) / world.w, 1.0f));
+            cx.add(v.x), cy.add(v.y);
+        }
+        fx = {std::max(bx.lo, cx.lo), std::min(bx.hi, cx.hi)};
+        fy = {std::max(by.lo, cy.lo), std::min(by.hi, cy.hi)};
+        if (!(fx.lo < fx.hi) || !(fy.lo < fy.hi)) fx = bx, fy = by;  // the camera sees none of it
+    }
+    const float extent = std::max({bx.hi - bx.lo, by.hi - by.lo, bz.hi - bz.lo, 1e-3f});
+    const auto pad = [&](Interval& i) {  // two texels beyond, so that the filter at the edge stays inside
+        const float width = std::max(i.hi - i.lo, 1e-4f * extent);
+        const float margin = width * 2.0f / float(map.size);
+        i.lo -= margin, i.hi += margin;
+    };
+    pad(fx), pad(fy);
+    const float depth_margin = 0.01f * extent;
+    map.near_plane = -bz.hi - depth_margin, map.far_plane = -bz.lo + depth_margin;
+    map.view_projection[0] = glm::ortho(fx.lo, fx.hi, fy.lo, fy.hi, map.near_plane, map.far_plane) * view;
+    map.to_light = -light.direction;
+}
+
+}  // namespace
+
+void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light& light, ShadowMap& map) {
+    map.size = light.shadow_map_size;
+    map.filter_radius = light.shadow_filter_radius;
+    map.position = light.position;
+    switch (light.type) {
+    case LightType::directional:
+        map.kind = ShadowMapKind::planar_depth, map.faces = 1;
+        plan_directional(scene, bounds, light, map);
+        break;
+    case LightType::spot: {
+        map.kind = ShadowMapKind::planar_distance, map.faces = 1;
+        map.far_plane = far_plane_from(bounds, light.position, light.range);
+        map.near_plane = map.far_plane / 1000.0f;
+        // The outer cone and two texels more, so that the filter at its edge stays inside.
+        const float half_fov = std::min(light.outer_cone_degrees * (1.0f + 4.0f / float(map.size)), 89.5f);
+        map.tan_half_fov = std::tan(glm::radians(half_fov));
+        map.view_projection[0] =
+            glm::perspective(glm::radians(2.0f * half_fov), 1.0f, map.near_plane, map.far_plane) *
+            glm::lookAt(light.position, light.position + light.direction, up_for(light.direction));
+        break;
+    }
+    case LightType::point: {
+        map.kind = ShadowMapKind::cube_distance, map.faces = 6;
+        map.far_plane = far_plane_from(bounds, light.position, light.range);
+        map.near_plane = map.far_plane / 1000.0f;
+        map.tan_half_fov = 1.0f;
+        map.disk_far_plane = light.range > 0.0f ? light.range : auto_light_range(light.color);
+        const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, map.near_plane, map.far_plane);
+        const glm::vec3 p = light.position;
+        // The chapter's shadowTransforms: GL's cube faces and their up vectors.
+        const std::array<std::pair<glm::vec3, glm::vec3>, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
+                                                                      {{-1, 0, 0}, {0, -1, 0}},
+                                                                      {{0, 1, 0}, {0, 0, 1}},
+                                                                      {{0, -1, 0}, {0, 0, -1}},
+                                                                      {{0, 0, 1}, {0, -1, 0}},
+                                                                      {{0, 0, -1}, {0, -1, 0}}}};
+        for (int f = 0; f < 6; ++f)
+            map.view_projection[f] = projection * glm::lookAt(p, p + faces[f].first, faces[f].second);
+        break;
+    }
+    }
+    map.depth.assign(std::size_t(map.faces) * map.size * map.size, 1.0f);
+}
+
+float distance_from_window_depth(const ShadowMap& map, float d, int column, int row) {
+    const float n = map.near_plane, f = map.far_plane, size = float(map.size);
+    const float ndc_x = ((float(column) + 0.5f) / size * 2.0f - 1.0f) * map.tan_half_fov;
+    const float ndc_y = (1.0f - (float(row) + 0.5f) / size * 2.0f) * map.tan_half_fov;
+    const float z_ndc = d * 2.0f - 1.0f;
+    const float view_depth = 2.0f * f * n / ((f + n) - z_ndc * (f - n));
+    return view_depth * std::sqrt(1.0f + ndc_x * ndc_x + ndc_y * ndc_y) / f;
+}
+
+namespace {
+
+// texture(shadowMap, uv).r with GL_NEAREST and GL_CLAMP_TO_BORDER (border 1.0).
+float sample_planar(const ShadowMap& map, float s, float t) {
+    const float column = std::floor(s * float(map.size)), row_from_bottom = std::floor(t * float(map.size));
+    if (!(column >= 0.0f && column < float(map.size) && row_from_bottom >= 0.0f && row_from_bottom < float(map.size)))
+        return 1.0f;
+    return map.texel(0, int(column), map.size - 1 - int(row_from_bottom));
+}
+
+// texture(depthMap, direction).r with GL_NEAREST and GL_CLAMP_TO_EDGE: the face
+// of the major axis, s and t from GL's table of sc, tc and ma.
+float sample_cube(const ShadowMap& map, const glm::vec3& d) {
+    const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+    int face;
+    float sc, tc, ma;
+    if (ax >= ay && ax >= az) face = d.x >= 0.0f ? 0 : 1, sc = d.x >= 0.0f ? -d.z : d.z, tc = -d.y, ma = ax;
+    else if (ay >= az) face = d.y >= 0.0f ? 2 : 3, sc = d.x, tc = d.y >= 0.0f ? d.z : -d.z, ma = ay;
+    else face = d.z >= 0.0f ? 4 : 5, sc = d.z >= 0.0f ? d.x : -d.x, tc = -d.y, ma = az;
+    if (!(ma > 0.0f)) return 1.0f;  // zero or NaN: nothing to look up
+    const float s = (sc / ma + 1.0f) * 0.5f, t = (tc / ma + 1.0f) * 0.5f;
+    const float last = float(map.size - 1);
+    const float column = std::clamp(std::floor(s * float(map.size)), 0.0f, last);
+    const float row_from_bottom = std::clamp(std::floor(t * float(map.size)), 0.0f, last);
+    if (!(column >= 0.0f) || !(row_from_bottom >= 0.0f)) return 1.0f;  // NaN
+    return map.texel(face, int(column), map.size - 1 - int(row_from_bottom));
+}
+
+// 3.1.3's ShadowCalculation (for a spot: its current depth a distance / far_plane).
+float planar_shadow(const ShadowMap& map, const glm::vec3& world_pos, const glm::vec3& normal_in) {
+    const glm::vec4 light_space = map.view_projection[0] * glm::vec4(world_pos, 1.0f);
+    if (map.kind == ShadowMapKind::planar_distance && !(light_space.w > 0.0f)) return 0.0f;  // behind the spot
+    glm::vec3 proj_coords = glm::vec3(light_space) / light_space.w;
+    proj_coords = proj_coords * 0.5f + 0.5f;
+    const bool distance = map.kind == ShadowMapKind::planar_distance;
+    const float current_depth = distance ? glm::length(world_pos - map.position) / map.far_plane : proj_coords.z;
+    const glm::vec3 normal = glm::normalize(normal_in);
+    const glm::vec3 light_dir = distance ? glm::normalize(map.position - world_pos) : map.to_light;
+    const float bias = std::max(0.05f * (1.0f - glm::dot(normal, light_dir)), 0.005f);
+    float shadow = 0.0f;
+    const float texel_size = 1.0f / float(map.size);
+    const int r = map.filter_radius;
+    for (int x = -r; x <= r; ++x) {
+        for (int y = -r; y <= r; ++y) {
+            const float pcf_depth =
+                sample_planar(map, proj_coords.x + float(x) * texel_size, proj_coords.y + float(y) * texel_size);
+            shadow += current_depth - bias > pcf_depth ? 1.0f : 0.0f;
+        }
+    }
+    shadow /= float((2 * r + 1) * (2 * r + 1));
+    if (proj_coords.z > 1.0f) shadow = 0.0f;
+    return shadow;
+}
+
+// 3.2.2's ShadowCalculation (filter radius 0: its single-sample variant).
+float cube_shadow(const ShadowMap& map, const glm::vec3& frag_pos, const glm::vec3& view_pos) {
+    const glm::vec3 frag_to_light = frag_pos - map.position;
+    const float current_depth = glm::length(frag_to_light);
+    const float bias = 0.15f;
+    if (map.filter_radius == 0) {
+        const float closest_depth = sample_cube(map, frag_to_light) * map.far_plane;
+        return current_depth - bias > closest_depth ? 1.0f : 0.0f;
+    }
+    float shadow = 0.0f;
+    const float view_distance = glm::length(view_pos - frag_pos);
+    const float disk_radius = (1.0f + (view_distance / map.disk_far_plane)) / 25.0f * float(map.filter_radius);
+    for (const glm::vec3& offset : kGridSamplingDisk) {
+        float closest_depth = sample_cube(map, frag_to_light + offset * disk_radius);
+        closest_depth *= map.far_plane;  // undo mapping [0;1]
+        if (current_depth - bias > closest_depth) shadow += 1.0f;
+    }
+    shadow /= float(kGridSamplingDisk.size());
+    return shadow;
+}
+
+}  // namespace
+
+float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const glm::vec3& normal,
+                        const glm::vec3& cam_pos) {
+    const float shadow = map.kind == ShadowMapKind::cube_distance ? cube_shadow(map, world_pos, cam_pos)
+                                                                  : planar_shadow(map, world_pos, normal);
+    return 1.0f - shadow;
+}
+
+void shadow_visibility_planes(const FragmentInputs& in, const ShadingLights& lights, float* planes,
+                              std::size_t stride) {
+    const std::size_t padded = padded_count(in.count);
+    for (std::size_t slot = 0; slot < lights.shadowed_count(); ++slot) {
+        const ShadowMap& map = *lights.shadow_maps[slot];
+        float* plane = planes + slot * stride;
+        for (std::size_t i = 0; i < in.count; ++i)
+            plane[i] = shadow_visibility(map, {in.world_x[i], in.world_y[i], in.world_z[i]},
+                                         {in.normal_x[i], in.normal_y[i], in.normal_z[i]}, lights.cam_pos);
+        for (std::size_t i = in.count; i < padded; ++i) plane[i] = 1.0f;
+    }
+}
+
+}  // namespace tessera::shade

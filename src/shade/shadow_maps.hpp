@@ -1,0 +1,110 @@
+// Shadow mapping, after LearnOpenGL's "Shadow Mapping" chapter (3.1.3,
+// shadow_mapping.fs: a directional light's 2D depth map, 3×3 PCF and the
+// slope-scaled bias max(0.05·(1 − N·L), 0.005)) and its "Point Shadows" chapter
+// (3.2.2, point_shadows.fs: a cube of linear distances / far_plane, the 20
+// gridSamplingDisk offsets, diskRadius = (1 + viewDistance / far_plane) / 25,
+// bias 0.15). A light's visibility (1 − the chapters' `shadow`) multiplies its
+// direct contribution to Lo (pbr_reference.hpp shade_pbr).
+//
+// The maps follow GL's sampling exactly: nearest texel, a 2D map clamped to a
+// border of depth 1 (GL_CLAMP_TO_BORDER), a cube clamped to each face's edge;
+// the texel of coordinate t ∈ [0, 1] is floor(t · size) (GL's rows from the
+// bottom; the maps store row 0 at the top, as the rasterizer draws them).
+//
+// What the chapters leave to their demo scene, and Tessera decides:
+//  - directional: an orthographic light camera looking along the light's
+//    direction, fitted to the part of the scene's bounds the camera sees (the
+//    frustum up to the farthest scene point), deep enough to hold every caster;
+//    the map keeps window depth, as the chapter's (linear for an orthographic
+//    projection), and the bias is in those units;
+//  - spot: a perspective light camera along its direction, its field of view
+//    the outer cone (plus two texels), far plane at the range or the farthest
+//    scene point; the map keeps distance / far_plane as the point chapter's
+//    cube does, filtered and biased as the directional map (bias in those units);
+//  - point: the chapter's six 90° faces (GL cube order +X −X +Y −Y +Z −Z and its
+//    lookAt up vectors), far plane at the range or the farthest scene point.
+//    The chapter's far_plane (25) is also the scale of its disk, (1 +
+//    viewDistance / far_plane) / 25: there it is the light's reach in the
+//    demo room. Tessera's reach is the light's range, else auto_light_range of
+//    its colour (where it falls to kAutoRangeIrradiance): a projection fitted
+//    to a small scene would make the disk several times the chapter's, wider
+//    than the 0.15 bias, and the floor under the light would shadow itself;
+//  - near planes at far / 1000 (the chapters' 1.0 for a 25-unit far plane
+//    would hide casters nearer than that).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shade/shade_kernels.hpp"
+#include "tessera/scene.hpp"
+
+namespace tessera::shade {
+
+// The world-space box around every object's vertices (as placed). empty: no vertex.
+struct SceneBounds {
+    glm::vec3 min{0.0f}, max{0.0f};
+    bool empty = true;
+};
+SceneBounds scene_bounds(const Scene& scene);
+// Whether Renderer draws `object` into shadow maps: every object but blended ones
+// (a masked material casts as if opaque).
+bool casts_shadow(const Scene& scene, const Object& object);
+
+enum class ShadowMapKind : std::uint8_t {
+    planar_depth,     // directional: window depth of an orthographic view
+    planar_distance,  // spot: distance / far_plane through a perspective view
+    cube_distance,    // point: six perspective faces, distance / far_plane
+};
+
+struct ShadowMap {
+    ShadowMapKind kind = ShadowMapKind::planar_depth;
+    int size = 0;           // texels per side
+    int filter_radius = 1;  // Light::shadow_filter_radius
+    int faces = 1;          // 6 for a cube
+    // World → the light camera's clip space, per face (the chapters'
+    // lightSpaceMatrix, shadowTransforms).
+    std::array<glm::mat4, 6> view_projection{};
+    glm::vec3 position{0.0f};     // spot and point: the light's (lightPos)
+    glm::vec3 to_light{0.0f};     // directional: −direction (the chapter's lightDir)
+    float near_plane = 0.0f, far_plane = 1.0f;
+    float disk_far_plane = 1.0f;  // point: the far_plane of the chapter's diskRadius (the light's reach)
+    float tan_half_fov = 1.0f;    // of the perspective faces
+    // faces × size² texels, face after face, row 0 of each at the top; 1 = nothing drawn.
+    std::vector<float> depth;
+
+    float texel(int face, int column, int row) const {
+        return depth[(std::size_t(face) * size + std::size_t(row)) * size + std::size_t(column)];
+    }
+};
+
+// The light camera(s) for `light` in `scene` (bounds: scene_bounds(scene)), and
+// the map's size; depth is sized and left for the depth pass to fill.
+void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light& light, ShadowMap& map);
+
+// What a distance map (spot, point) stores at texel (column, row) of a face
+// where the depth pass left window depth d < 1: distance / far_plane, the
+// distance from the light to that surface through the texel's centre (what
+// the point chapter's depth shader writes as gl_FragDepth). The nearest
+// surface along the ray is the same either way (view depth and distance grow
+// together), so the depth pass's LESS test picks it.
+float distance_from_window_depth(const ShadowMap& map, float d, int column, int row);
+
+// The chapters' visibility, 1 − ShadowCalculation, in [0, 1], of a point at
+// world_pos with shading normal `normal` (any length) seen from cam_pos.
+float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const glm::vec3& normal,
+                        const glm::vec3& cam_pos);
+
+// shadow_visibility of in's fragments for every shadowed light of `lights`:
+// slot s's (ShadingLights::shadow_maps[s]) at planes[s · stride + i], for
+// i < padded_count(in.count) (1 in the padding). stride >= padded_count(in.count).
+void shadow_visibility_planes(const FragmentInputs& in, const ShadingLights& lights, float* planes,
+                              std::size_t stride);
+
+// The 20 offsets of the point chapter's gridSamplingDisk.
+extern const std::array<glm::vec3, 20> kGridSamplingDisk;
+
+}  // namespace tessera::shade

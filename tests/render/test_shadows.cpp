@@ -1,0 +1,283 @@
+// Shadow mapping end to end: the depth passes through the frame's own stages
+// (render/shadow_pass.hpp), the chapters' lookups on the maps they make
+// (shade/shadow_maps.hpp), and the frame with them.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render/isa_agreement.hpp"
+#include "render/shadow_pass.hpp"
+#include "shade/shadow_maps.hpp"
+#include "simd/isa.hpp"
+#include "tessera/renderer.hpp"
+#include "tessera/scene.hpp"
+
+namespace {
+
+using namespace tessera;
+
+// A 10×10 floor at y = 0 and, unless `occluder` is false, a cube of side 1 over
+// its centre (y from 0.5 to 1.5), lit by `light` (a [[lights]] table's keys).
+Scene floor_scene(const std::string& light, bool occluder = true, int size = 160) {
+    std::string text = "[output]\nwidth = " + std::to_string(size) + "\nheight = " + std::to_string(size * 3 / 4) +
+                       "\n[camera]\nposition = [0, 7, 9]\ntarget = [0, 0, 0]\n"
+                       "[[lights]]\n" + light + "\n"
+                       "[[objects]]\nmesh = \"plane\"\nscale = 5\n"
+                       "material = { albedo = [0.8, 0.8, 0.8], roughness = 0.6 }\n";
+    if (occluder)
+        text += "[[objects]]\nmesh = \"cube\"\ntranslate = [0, 1, 0]\nscale = 0.5\n"
+                "material = { albedo = [0.2, 0.4, 0.8], roughness = 0.4 }\n";
+    return parse_scene(text, "floor_scene");
+}
+
+const char* const kDirectional =
+    "type = \"directional\"\ndirection = [0.1, -1.0, 0.05]\ncolor = [3, 3, 3]\nshadows = true\nshadow_map_size = 512";
+const char* const kSpot =
+    "type = \"spot\"\nposition = [0, 6, 0]\ndirection = [0, -1, 0]\nouter_cone = 60\ncolor = [200, 200, 200]\n"
+    "shadows = true\nshadow_map_size = 512";
+const char* const kPoint = "type = \"point\"\nposition = [0.3, 4, 0.2]\ncolor = [100, 100, 100]\nshadows = true\n"
+                           "shadow_map_size = 256";
+
+const std::string kCamera = "[camera]\nposition = [0, 0, 5]\ntarget = [0, 0, 0]\n";
+
+struct Maps {
+    std::vector<shade::ShadowMap> maps;
+    std::vector<const shade::ShadowMap*> by_light;
+};
+Maps render_maps(const Scene& scene, simd::Isa isa = simd::best_supported_isa()) {
+    render::ShadowPass pass;
+    Maps m;
+    pass.render_maps(isa, scene, m.maps, m.by_light);
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("shadow depth pass: a known quad's window depth, nearest wins, nothing elsewhere") {
+    // The plane mesh (x, z in [-1, 1] at y = 0) seen from y = 2 straight down
+    // through an orthographic box 4 wide and 4 deep: it covers the middle half
+    // of the map at view depth 2, window depth 0.5. A second quad at y = 1,
+    // over x in [0, 1] only, is nearer (window depth 0.25) where it lies.
+    const Scene scene = parse_scene(R"(
+[camera]
+position = [0, 0, 5]
+target = [0, 0, 0]
+[[objects]]
+mesh = "plane"
+[[objects]]
+mesh = "plane"
+translate = [0.5, 1, 0]
+scale = [0.5, 1, 1]
+)",
+                                    "quad");
+    const glm::mat4 view_projection = glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.0f, 4.0f) *
+                                      glm::lookAt(glm::vec3(0, 2, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+    for (const simd::Isa isa : {simd::Isa::scalar, simd::best_supported_isa()}) {
+        CAPTURE(simd::isa_name(isa));
+        render::ShadowPass pass;
+        pass.prepare(scene);
+        const int size = 64;
+        std::vector<float> depth(size * size, -1.0f);
+        pass.render_depth(isa, scene, view_projection, size, depth);
+        int wrong = 0;
+        for (int row = 0; row < size; ++row) {
+            for (int column = 0; column < size; ++column) {
+                const bool on_floor = column >= 16 && column < 48 && row >= 16 && row < 48;
+                const bool on_upper = on_floor && column >= 32;  // x >= 0: the image's right half
+                const float expected = on_upper ? 0.25f : on_floor ? 0.5f : 1.0f;
+                if (std::abs(depth[row * size + column] - expected) > 1e-6f) ++wrong;
+            }
+        }
+        CHECK(wrong == 0);
+    }
+}
+
+TEST_CASE("shadows: a point behind an occluder gets visibility 0, a lit one 1, for each light type") {
+    for (const char* light : {kDirectional, kSpot, kPoint}) {
+        CAPTURE(light);
+        const Scene scene = floor_scene(light);
+        const Maps m = render_maps(scene);
+        REQUIRE(m.by_light.size() == 1);
+        REQUIRE(m.by_light[0] != nullptr);
+        const shade::ShadowMap& map = *m.by_light[0];
+        const glm::vec3 up(0, 1, 0), camera = scene.camera.position;
+        CHECK(shadow_visibility(map, {0.0f, 0.0f, 0.0f}, up, camera) == 0.0f);    // under the cube
+        CHECK(shadow_visibility(map, {2.5f, 0.0f, 2.0f}, up, camera) == 1.0f);    // open floor
+        CHECK(shadow_visibility(map, {0.0f, 1.5f, 0.0f}, up, camera) == 1.0f);    // the cube's top
+        CHECK(shadow_visibility(map, {-2.0f, 0.0f, -2.5f}, up, camera) == 1.0f);  // open floor
+    }
+}
+
+TEST_CASE("shadows: the bias keeps an unoccluded floor facing the light free of acne") {
+    const char* const tilted = "type = \"directional\"\ndirection = [0.5, -0.8, 0.3]\ncolor = [3, 3, 3]\n"
+                               "shadows = true\nshadow_map_size = 512";
+    for (const char* light : {kDirectional, tilted, kSpot, kPoint}) {
+        CAPTURE(light);
+        const Scene scene = floor_scene(light, false);
+        const Maps m = render_maps(scene);
+        const shade::ShadowMap& map = *m.by_light[0];
+        int shadowed = 0, points = 0;
+        for (float x = -4.95f; x < 5.0f; x += 0.1f) {
+            for (float z = -4.95f; z < 5.0f; z += 0.1f) {
+                const glm::vec3 p(x, 0.0f, z);
+                // The spot lights a disc only; past its cone the map says nothing.
+                if (scene.lights[0].type == LightType::spot && glm::length(glm::vec2(x, z)) > 6.0f * 1.6f) continue;
+                ++points;
+                shadowed += shadow_visibility(map, p, {0, 1, 0}, scene.camera.position) != 1.0f;
+            }
+        }
+        CHECK(points > 9000);
+        CHECK(shadowed == 0);
+    }
+}
+
+TEST_CASE("shadows: PCF softens the rendered shadow's edge, and only shadowed light dims") {
+    Scene scene = floor_scene(kDirectional, true, 240);
+    Renderer renderer({.threads = 2, .keep_radiance = true});
+    const std::vector<float> shadowed = renderer.render(scene).radiance;
+    scene.lights[0].shadows = false;
+    const std::vector<float> unshadowed = renderer.render(scene).radiance;
+    REQUIRE(shadowed.size() == unshadowed.size());
+    std::size_t darker = 0, equal = 0, brighter = 0;
+    for (std::size_t i = 0; i < shadowed.size(); ++i) {
+        if (shadowed[i] < unshadowed[i]) ++darker;
+        else if (shadowed[i] == unshadowed[i]) ++equal;
+        else ++brighter;
+    }
+    CHECK(brighter == 0);
+    CHECK(darker > 300);       // the cube's shadow on the floor
+    CHECK(equal > darker * 5);  // lit pixels keep their bits
+    // Fractions at the edge: some shadowed pixels keep more than the ambient
+    // term and less than the full light.
+    std::size_t partial = 0;
+    for (std::size_t i = 0; i < shadowed.size(); i += 3) {
+        const float ambient = 0.03f * 0.8f;  // the floor's ambient, red channel
+        if (shadowed[i] > ambient * 1.5f && shadowed[i] < unshadowed[i] * 0.9f) ++partial;
+    }
+    CHECK(partial > 10);
+}
+
+TEST_CASE("shadows: the same bits on 1, 2 and 8 threads, every ISA within a step of the scalar path") {
+    Scene scene = parse_scene(R"(
+[output]
+width = 200
+height = 150
+[camera]
+position = [0, 7, 9]
+target = [0, 0, 0]
+[[lights]]
+type = "directional"
+direction = [0.3, -1, -0.2]
+color = [2, 2, 2]
+shadows = true
+shadow_map_size = 300
+[[lights]]
+type = "spot"
+position = [-3, 5, 2]
+direction = [0.5, -1, -0.3]
+color = [150, 120, 100]
+shadows = true
+shadow_filter_radius = 2
+[[lights]]
+type = "point"
+position = [2, 3, 1]
+color = [40, 40, 50]
+shadows = true
+shadow_map_size = 128
+[[lights]]
+position = [0, 5, 5]
+color = [20, 20, 20]
+[[objects]]
+mesh = "plane"
+scale = 5
+[[objects]]
+mesh = "sphere"
+translate = [0, 1, 0]
+[[objects]]
+mesh = "cube"
+translate = [-2, 0.5, 1]
+scale = 0.5
+)",
+                              "three_lights");
+    Renderer one({.threads = 1, .keep_radiance = true});
+    const RenderedImage reference = one.render(scene);
+    CHECK(one.render(scene).radiance == reference.radiance);  // a second frame from reused memory
+    for (const int threads : {2, 8}) {
+        CAPTURE(threads);
+        Renderer renderer({.threads = threads, .keep_radiance = true});
+        CHECK(renderer.render(scene).radiance == reference.radiance);
+    }
+    Renderer scalar({.threads = 2, .isa = "scalar"});
+    const RenderedImage scalar_image = scalar.render(scene);
+    test::check_every_isa_within(scene, scalar_image, 1, {.threads = 2});
+    // With light culling (ranges), the same visibility scales the same light.
+    for (Light& light : scene.lights)
+        if (light.type != LightType::directional) light.range = 30.0f;
+    Renderer culled({.threads = 2, .keep_radiance = true});
+    Renderer uncut({.threads = 2, .keep_radiance = true, .light_culling = false});
+    CHECK(culled.render(scene).radiance == uncut.render(scene).radiance);
+}
+
+TEST_CASE("shadows: bad map sizes and filter radii are refused with a clear error") {
+    const auto load = [](const std::string& keys) {
+        return parse_scene(kCamera + "[[lights]]\nposition = [0, 1, 0]\ncolor = [1, 1, 1]\nshadows = true\n" + keys,
+                           "bad");
+    };
+    CHECK_NOTHROW(load("shadow_map_size = 16\nshadow_filter_radius = 0"));
+    for (const char* keys : {"shadow_map_size = -1", "shadow_map_size = 0", "shadow_map_size = 100000",
+                             "shadow_map_size = nan", "shadow_map_size = 512.5", "shadow_filter_radius = -1",
+                             "shadow_filter_radius = 9", "shadow_filter_radius = nan", "shadows = 1"}) {
+        CAPTURE(keys);
+        CHECK_THROWS_AS(load(keys), SceneError);
+    }
+    CHECK_THROWS_WITH_AS(load("shadow_map_size = 100000"),
+                         doctest::Contains("'lights[0].shadow_map_size' to be in 16..8192"), SceneError);
+    CHECK_THROWS_WITH_AS(parse_scene(kCamera + "[shadows]\nmap_size = -4\n", "bad"),
+                         doctest::Contains("'shadows.map_size' to be in 16..8192"), SceneError);
+    CHECK_THROWS_AS(parse_scene(kCamera + "[shadows]\nsoftness = 1\n", "bad"), SceneError);
+    // Built in code: the renderer refuses it too.
+    Scene scene = load("");
+    scene.lights[0].shadow_map_size = 1 << 20;
+    Renderer renderer({.threads = 1});
+    CHECK_THROWS_WITH_AS(renderer.render(scene), doctest::Contains("shadow map size"), std::invalid_argument);
+    scene.lights[0].shadow_map_size = 64, scene.lights[0].shadow_filter_radius = -3;
+    CHECK_THROWS_AS(renderer.render(scene), std::invalid_argument);
+}
+
+TEST_CASE("shadows: [shadows] sets every light's default, a light's own keys win") {
+    const Scene scene = parse_scene(kCamera + R"(
+[shadows]
+enabled = true
+map_size = 256
+filter_radius = 2
+[[lights]]
+position = [0, 1, 0]
+color = [1, 1, 1]
+[[lights]]
+position = [0, 2, 0]
+color = [1, 1, 1]
+shadows = false
+[[lights]]
+type = "directional"
+direction = [0, -1, 0]
+color = [1, 1, 1]
+shadow_map_size = 2048
+)",
+                                    "defaults");
+    REQUIRE(scene.lights.size() == 3);
+    CHECK(scene.lights[0].shadows);
+    CHECK(scene.lights[0].shadow_map_size == 256);
+    CHECK(scene.lights[0].shadow_filter_radius == 2);
+    CHECK(!scene.lights[1].shadows);
+    CHECK(scene.lights[2].shadows);
+    CHECK(scene.lights[2].shadow_map_size == 2048);
+    const Scene plain = parse_scene(kCamera + "[[lights]]\nposition = [0, 1, 0]\ncolor = [1, 1, 1]\n", "plain");
+    CHECK(!plain.lights[0].shadows);
+    CHECK(plain.lights[0].shadow_map_size == kDefaultShadowMapSize);
+}

@@ -1,0 +1,130 @@
+// The chapters' ShadowCalculation (shade/shadow_maps.hpp) on maps written by hand.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shade/shadow_maps.hpp"
+
+namespace {
+
+using namespace tessera;
+using namespace tessera::shade;
+
+// A directional map over x, y in [-1, 1], looking down −z from z = 1 to z = −1
+// (window depth = (1 − z) / 2), of `size` texels, every texel at depth `depth`.
+ShadowMap flat_directional_map(int size, float depth, int filter_radius = 1) {
+    ShadowMap map;
+    map.kind = ShadowMapKind::planar_depth;
+    map.size = size, map.filter_radius = filter_radius;
+    map.view_projection[0] = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.0f, 2.0f) *
+                             glm::lookAt(glm::vec3(0, 0, 1), glm::vec3(0, 0, 0), glm::vec3(0, 1, 0));
+    map.to_light = {0, 0, 1};
+    map.depth.assign(std::size_t(size) * size, depth);
+    return map;
+}
+
+const glm::vec3 kFacingLight{0, 0, 1};
+const glm::vec3 kCamera{0, 0, 5};
+
+}  // namespace
+
+TEST_CASE("shadow map: a point behind the stored depth is in shadow, one in front of it lit") {
+    const ShadowMap map = flat_directional_map(64, 0.25f);  // an occluder at z = 0.5
+    CHECK(shadow_visibility(map, {0.1f, -0.2f, 0.0f}, kFacingLight, kCamera) == 0.0f);   // depth 0.5
+    CHECK(shadow_visibility(map, {0.1f, -0.2f, 0.52f}, kFacingLight, kCamera) == 1.0f);  // at 0.24: lit
+    // Within the bias (0.005 facing the light) of the occluder: lit, no acne.
+    CHECK(shadow_visibility(map, {0.1f, -0.2f, 0.495f}, kFacingLight, kCamera) == 1.0f);
+    // Beyond the far plane (projected depth > 1): lit, as the chapter keeps it.
+    CHECK(shadow_visibility(map, {0.1f, -0.2f, -1.5f}, kFacingLight, kCamera) == 1.0f);
+    // Outside the map: the border's depth 1, lit.
+    CHECK(shadow_visibility(map, {3.0f, 0.0f, 0.0f}, kFacingLight, kCamera) == 1.0f);
+    // NaN positions are lit, not undefined behaviour.
+    CHECK(shadow_visibility(map, {NAN, 0.0f, 0.0f}, kFacingLight, kCamera) == 1.0f);
+}
+
+TEST_CASE("shadow map: the slope-scaled bias grows as the surface turns from the light") {
+    // Depth 0.27 stored, point at depth 0.3: 0.03 behind. Facing the light the
+    // bias is 0.005 (shadow); at N·L = 0.2 it is 0.05·0.8 = 0.04 (lit).
+    const ShadowMap map = flat_directional_map(64, 0.27f);
+    const glm::vec3 point{0.0f, 0.0f, 0.4f};  // window depth (1 − 0.4)/2 = 0.3
+    CHECK(shadow_visibility(map, point, kFacingLight, kCamera) == 0.0f);
+    const glm::vec3 grazing = glm::normalize(glm::vec3(std::sqrt(1.0f - 0.04f), 0.0f, 0.2f));
+    CHECK(shadow_visibility(map, point, grazing, kCamera) == 1.0f);
+}
+
+TEST_CASE("shadow map: 3x3 PCF gives thirds across an occluder's edge") {
+    // Columns 32 and up hold an occluder (depth 0.1), the rest nothing (1).
+    const int size = 64;
+    ShadowMap map = flat_directional_map(size, 1.0f);
+    for (int row = 0; row < size; ++row)
+        for (int column = size / 2; column < size; ++column) map.depth[std::size_t(row) * size + column] = 0.1f;
+    const auto at_column = [&](int column) {  // a point at the centre of that column, depth 0.5
+        const float x = (float(column) + 0.5f) / float(size) * 2.0f - 1.0f;
+        return shadow_visibility(map, {x, 0.01f, 0.0f}, kFacingLight, kCamera);
+    };
+    CHECK(at_column(20) == 1.0f);
+    CHECK(at_column(30) == 1.0f);
+    CHECK(at_column(31) == doctest::Approx(2.0f / 3.0f));  // its right neighbours are shadowed
+    CHECK(at_column(32) == doctest::Approx(1.0f / 3.0f));
+    CHECK(at_column(33) == 0.0f);
+    // Radius 0: the single-sample test, a hard edge; radius 2: fifths.
+    map.filter_radius = 0;
+    CHECK(at_column(31) == 1.0f);
+    CHECK(at_column(32) == 0.0f);
+    map.filter_radius = 2;
+    CHECK(at_column(30) == doctest::Approx(4.0f / 5.0f));
+    CHECK(at_column(33) == doctest::Approx(1.0f / 5.0f));
+}
+
+TEST_CASE("shadow map: rows follow GL's t from the bottom of the picture") {
+    const int size = 16;
+    ShadowMap map = flat_directional_map(size, 1.0f, 0);
+    map.depth[0] = 0.1f;  // row 0 (the top), column 0: the map's upper left corner, y = +1
+    CHECK(shadow_visibility(map, {-0.95f, 0.95f, 0.0f}, kFacingLight, kCamera) == 0.0f);
+    CHECK(shadow_visibility(map, {-0.95f, -0.95f, 0.0f}, kFacingLight, kCamera) == 1.0f);
+}
+
+TEST_CASE("cube shadow map: the point chapter's 20-sample disk") {
+    ShadowMap map;
+    map.kind = ShadowMapKind::cube_distance;
+    map.size = 32, map.faces = 6, map.filter_radius = 1;
+    map.position = {0, 0, 0};
+    map.far_plane = 10.0f, map.disk_far_plane = 10.0f;
+    map.depth.assign(6 * 32 * 32, 1.0f);
+    // An occluder at distance 3 filling face +X (face 0).
+    std::fill(map.depth.begin(), map.depth.begin() + 32 * 32, 0.3f);
+    const glm::vec3 camera{0, 0, 0.5f};
+    CHECK(shadow_visibility(map, {5.0f, 0.2f, -0.3f}, {-1, 0, 0}, camera) == 0.0f);  // behind it
+    CHECK(shadow_visibility(map, {2.0f, 0.2f, -0.3f}, {-1, 0, 0}, camera) == 1.0f);  // in front of it
+    CHECK(shadow_visibility(map, {-5.0f, 0.2f, -0.3f}, {1, 0, 0}, camera) == 1.0f);  // on the other side
+    CHECK(shadow_visibility(map, {3.1f, 0.0f, 0.0f}, {-1, 0, 0}, camera) == 1.0f);   // within the 0.15 bias
+    // At the face's edge (x = y) some of the disk's samples land on face +Y: a fraction.
+    const float v = shadow_visibility(map, {5.0f, 5.0f, 0.0f}, {-1, 0, 0}, camera);
+    CHECK(v > 0.0f);
+    CHECK(v < 1.0f);
+    CHECK(v * 20.0f == doctest::Approx(std::round(v * 20.0f)));  // in twentieths
+    // Faces follow GL's table and the chapter's lookAt up vectors: −Z's camera
+    // has up = −y, so its upper left texel (row 0, column 0) looks along (+x, −y, −z).
+    std::fill(map.depth.begin(), map.depth.end(), 1.0f);
+    map.filter_radius = 0;
+    map.depth[std::size_t(5) * 32 * 32] = 0.1f;
+    CHECK(shadow_visibility(map, {2.9f, -2.9f, -3.0f}, {0, 0, 1}, camera) == 0.0f);
+    CHECK(shadow_visibility(map, {-2.9f, -2.9f, -3.0f}, {0, 0, 1}, camera) == 1.0f);
+    CHECK(shadow_visibility(map, {2.9f, 2.9f, -3.0f}, {0, 0, 1}, camera) == 1.0f);
+}
+
+TEST_CASE("distance maps store distance / far_plane through each texel's centre") {
+    ShadowMap map;
+    map.kind = ShadowMapKind::cube_distance;
+    map.size = 8, map.faces = 6;
+    map.near_plane = 0.1f, map.far_plane = 20.0f, map.tan_half_fov = 1.0f;
+    const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, map.near_plane, map.far_plane);
+    // A surface at view depth 4 seen through texel (5, 2): window depth from the projection.
+    const glm::vec4 clip = projection * glm::vec4(0.0f, 0.0f, -4.0f, 1.0f);
+    const float window = clip.z / clip.w * 0.5f + 0.5f;
+    const float ndc_x = (5.5f / 8.0f) * 2.0f - 1.0f, ndc_y = 1.0f - (2.5f / 8.0f) * 2.0f;
+    const float expected = 4.0f * std::sqrt(1.0f + ndc_x * ndc_x + ndc_y * ndc_y) / 20.0f;
+    CHECK(distance_from_window_depth(map, window, 5, 2) == doctest::Approx(expected).epsilon(1e-4));
+}
