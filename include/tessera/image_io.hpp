@@ -13,6 +13,7 @@
 //         position   P.X P.Y P.Z                     float, world space
 //         object_id  object_id                       uint, 0 = background (AovPlanes::object_id)
 //         material_id material_id                    uint, 0 = background
+//         shadow      shadow                         half, mean light visibility, 1 = background
 //       OpenEXR keeps channels sorted by name; look them up by name when reading.
 #pragma once
 

@@ -13,9 +13,10 @@ namespace tessera {
 
 // Arbitrary output variables: surface data per pixel, written beside the
 // radiance into the EXR (channel names in image_io.hpp).
-enum class Aov : std::uint8_t { depth, normal, albedo, roughness, metallic, position, object_id, material_id };
+enum class Aov : std::uint8_t { depth, normal, albedo, roughness, metallic, position, object_id, material_id, shadow };
 inline constexpr Aov kAllAovs[] = {Aov::depth,    Aov::normal,   Aov::albedo,    Aov::roughness,
-                                   Aov::metallic, Aov::position, Aov::object_id, Aov::material_id};
+                                   Aov::metallic, Aov::position, Aov::object_id, Aov::material_id,
+                                   Aov::shadow};
 std::string_view aov_name(Aov aov);  // as the command line spells it: "depth", "normal", ...
 
 // A selection of AOVs, one bit per Aov.
@@ -77,10 +78,15 @@ struct AovPlanes {
     // Background: 0. The same for any thread count and run.
     std::vector<std::uint32_t> object_id;
     std::vector<std::uint32_t> material_id;
+    // Light visibility (shadow mapping, Light::shadows): the mean over the
+    // lights that cast shadows of each one's visibility, 1 − the chapters'
+    // `shadow`, in [0, 1]: 1 lit by all of them, 0 in the shadow of all. 1 where
+    // no light casts shadows. Background: 1. Opaque and masked surfaces, as the ids.
+    std::vector<float> shadow;
 
     bool empty() const {
         return depth.empty() && normal.empty() && albedo.empty() && roughness.empty() && metallic.empty() &&
-               position.empty() && object_id.empty() && material_id.empty();
+               position.empty() && object_id.empty() && material_id.empty() && shadow.empty();
     }
 };
 

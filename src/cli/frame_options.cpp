@@ -72,7 +72,8 @@ std::filesystem::path shipped_environment_path() {
 
 namespace {
 
-// Where a key light shines from: above, left of and in front of the camera.
+// Where a key light shines from: above, left of and in front of the camera;
+// it casts shadows (a 2048² map: one light, fitted to what the camera sees).
 Light key_light(const Camera& camera) {
     const glm::vec3 forward = glm::normalize(camera.target - camera.position);
     const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
@@ -81,6 +82,8 @@ Light key_light(const Camera& camera) {
     light.type = LightType::directional;
     light.direction = -glm::normalize(up * 1.0f - right * 0.6f - forward * 0.8f);
     light.color = glm::vec3(kKeyLightRadiance);
+    light.shadows = true;
+    light.shadow_map_size = kKeyLightShadowMapSize;
     return light;
 }
 

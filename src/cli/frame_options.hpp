@@ -32,6 +32,7 @@ void add_lighting_options(CLI::App* command, LightingOptions& options);
 // and the environment comes in at kEnvironmentBesideLights. "reference": no
 // environment, the scene's lights (a glTF file's default rig), as before IBL.
 inline constexpr float kKeyLightRadiance = 2.5f;
+inline constexpr int kKeyLightShadowMapSize = 2048;
 inline constexpr float kEnvironmentBesideLights = 0.3f;
 void apply_lighting_options(const LightingOptions& options, const std::string& scene_path, Scene& scene);
 // The environment image shipped with tessera: beside an installed binary

@@ -275,8 +275,8 @@ int main(int argc, char** argv) {
         ->required();
     render_app->add_option("--aov", render.aov_lists,
                            "Add surface data to every .exr output, a comma-separated list of depth, normal, albedo, "
-                           "roughness, metallic, position, object_id, material_id (channels Z, N.XYZ, albedo.RGB, "
-                           "roughness, metallic, P.XYZ, object_id, material_id: uint, 0 = background)")
+                           "roughness, metallic, position, object_id, material_id, shadow (channels Z, N.XYZ, albedo.RGB, "
+                           "roughness, metallic, P.XYZ, object_id, material_id: uint, 0 = background; shadow: mean light visibility)")
         ->allow_extra_args(false);  // one list per --aov: a scene file after it stays a scene
     tessera::cli::add_frame_options(render_app, render.width, render.height, render.msaa, render.settings);
     tessera::cli::add_lighting_options(render_app, render.lighting);

@@ -64,6 +64,7 @@ std::vector<ExrChannel> exr_channels(const RenderedImage& image, const std::file
     // Ids are exact integers: uint, which neither float (past 2^24) nor half could hold.
     add(image.aov.object_id, "object_id", {"object_id"}, Imf::UINT);
     add(image.aov.material_id, "material_id", {"material_id"}, Imf::UINT);
+    add(image.aov.shadow, "shadow", {"shadow"}, Imf::HALF);
     return channels;
 }
 

@@ -51,6 +51,7 @@ void write_aov_background(AovPlanes& aov, std::size_t pixel) {
     if (!aov.position.empty()) std::fill_n(&aov.position[3 * pixel], 3, 0.0f);
     if (!aov.object_id.empty()) aov.object_id[pixel] = 0;
     if (!aov.material_id.empty()) aov.material_id[pixel] = 0;
+    if (!aov.shadow.empty()) aov.shadow[pixel] = 1.0f;
 }
 
 // Fragment k of `s`, showing triangle `triangle`.
@@ -58,6 +59,11 @@ void write_aov_fragment(AovPlanes& aov, std::size_t pixel, const shade::Fragment
                         const ViewDepth& view_depth, const SurfaceIds& ids, std::uint32_t triangle) {
     if (!aov.object_id.empty()) aov.object_id[pixel] = ids.object_id(triangle);
     if (!aov.material_id.empty()) aov.material_id[pixel] = ids.material_id(triangle);
+    if (!aov.shadow.empty()) {  // the mean of the shadowed lights' visibility, summed in slot order
+        float sum = 0.0f;
+        for (std::size_t p = 0; p < s.visibility_planes; ++p) sum += s.visibility[p * s.visibility_stride + k];
+        aov.shadow[pixel] = s.visibility_planes > 0 ? sum / float(s.visibility_planes) : 1.0f;
+    }
     const float x = s.world_x[k], y = s.world_y[k], z = s.world_z[k];
     if (!aov.depth.empty()) aov.depth[pixel] = view_depth(x, y, z);
     if (!aov.normal.empty()) {

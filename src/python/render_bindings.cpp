@@ -176,6 +176,10 @@ void bind_render(py::module_& m) {
             const RenderedImage& i = f.images->image;
             return view(f.images, i.aov.material_id, {i.height, i.width});
         }, "(H, W) uint32: the material's index + 1, 0 for the background")
+        .def_property_readonly("shadow", [](const Frame& f) {
+            const RenderedImage& i = f.images->image;
+            return view(f.images, i.aov.shadow, {i.height, i.width});
+        }, "(H, W) float32: the mean visibility of the lights that cast shadows (1 lit), 1 for the background")
         .def_property_readonly("stats", [](const Frame& f) { return stats_dict(f.images->stats); })
         .def("save",
              [](const Frame& f, const std::filesystem::path& path) {
@@ -223,7 +227,7 @@ void bind_render(py::module_& m) {
              py::arg("msaa") = py::none(), py::arg("aovs") = py::tuple(), py::arg("radiance") = false,
              py::arg("isa") = "auto", py::arg("tile_size") = 64, py::arg("light_culling") = true,
              "width, height, msaa: None = the scene's. threads: 0 = one per hardware thread. aovs: names from "
-             "depth, normal, albedo, roughness, metallic, position, object_id, material_id, or 'all'. radiance: "
+             "depth, normal, albedo, roughness, metallic, position, object_id, material_id, shadow, or 'all'. radiance: "
              "also keep the HDR image.")
         .def("render", [](PythonRenderer& r, const SharedScene& scene) { return Frame{render_frame(r, scene)}; },
              py::arg("scene"),

@@ -368,7 +368,8 @@ void bind_scene(py::module_& m) {
              py::arg("object"), py::arg("transform"), "Moves object number `object` (its index, not its id)")
         .def("add_light",
              [](SharedScene& s, const std::string& type, const py::object& position, const py::object& color,
-                const py::object& direction, float inner_cone, float outer_cone, float range) {
+                const py::object& direction, float inner_cone, float outer_cone, float range, bool shadows,
+                int shadow_map_size, int shadow_filter_radius) {
                  Light light;
                  if (type == "point") light.type = LightType::point;
                  else if (type == "directional") light.type = LightType::directional;
@@ -386,6 +387,13 @@ void bind_scene(py::module_& m) {
                  light.inner_cone_degrees = inner_cone, light.outer_cone_degrees = outer_cone;
                  if (!(range >= 0.0f && std::isfinite(range))) throw py::value_error("range: expected >= 0 (0 = unlimited)");
                  light.range = range;
+                 if (shadow_map_size < kMinShadowMapSize || shadow_map_size > kMaxShadowMapSize)
+                     throw py::value_error("shadow_map_size: expected " + std::to_string(kMinShadowMapSize) + ".." +
+                                           std::to_string(kMaxShadowMapSize) + " texels");
+                 if (shadow_filter_radius < 0 || shadow_filter_radius > kMaxShadowFilterRadius)
+                     throw py::value_error("shadow_filter_radius: expected 0.." + std::to_string(kMaxShadowFilterRadius));
+                 light.shadows = shadows;
+                 light.shadow_map_size = shadow_map_size, light.shadow_filter_radius = shadow_filter_radius;
                  std::unique_lock lock(s.mutex);
                  s.scene.lights.push_back(light);
                  return s.scene.lights.size() - 1;
@@ -393,6 +401,8 @@ void bind_scene(py::module_& m) {
              py::arg("type") = "point", py::arg("position") = py::make_tuple(0.0, 0.0, 0.0),
              py::arg("color") = py::make_tuple(1.0, 1.0, 1.0), py::arg("direction") = py::make_tuple(0.0, 0.0, -1.0),
              py::arg("inner_cone") = 0.0f, py::arg("outer_cone") = 45.0f, py::arg("range") = 0.0f,
+             py::arg("shadows") = false, py::arg("shadow_map_size") = kDefaultShadowMapSize,
+             py::arg("shadow_filter_radius") = kDefaultShadowFilterRadius,
              "Adds a light (point and spot colours are radiance times distance squared) and returns its index")
         .def("validate",
              [](const SharedScene& s) {

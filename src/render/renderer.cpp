@@ -155,6 +155,7 @@ void size_aov_planes(AovSet wanted, std::size_t pixels, AovPlanes& aov) {
     size(Aov::position, aov.position, 3);
     size(Aov::object_id, aov.object_id, 1);
     size(Aov::material_id, aov.material_id, 1);
+    size(Aov::shadow, aov.shadow, 1);
 }
 
 // Back faces of single-sided materials. Front faces are counter-clockwise in
@@ -181,6 +182,7 @@ std::string_view aov_name(Aov aov) {
     case Aov::position: return "position";
     case Aov::object_id: return "object_id";
     case Aov::material_id: return "material_id";
+    case Aov::shadow: return "shadow";
     }
     return "?";
 }
@@ -281,6 +283,13 @@ struct Renderer::Frame {
                            Clock::time_point raster_start, WorkerScratch& s, Gather&& gather, Resolve&& resolve,
                            bool blended);
     std::size_t shade_tile(const Scene& scene, std::size_t count, WorkerScratch& scratch) const;
+    // The inputs with the visibility planes shade_tile left in the worker's scratch (the shadow AOV).
+    shade::FragmentInputs with_visibility(shade::FragmentInputs in, const WorkerScratch& s) const {
+        if (lights.shadowed_count() == 0) return in;
+        in.visibility = s.visibility.data(), in.visibility_stride = shade::padded_count(in.count);
+        in.visibility_planes = lights.shadowed_count();
+        return in;
+    }
     shade::TriangleCorners corners_of(const Scene& scene, std::uint32_t id) const;
     // The gathers' lookup (set by render_tiles): the chunks' triangles, corners
     // and materials as plain arrays, corners_of through `full`.
@@ -660,7 +669,8 @@ void Renderer::Frame::render_tile(const Scene& scene, const image::ClearValues& 
                 if (background.shown()) background.paint(rect, &s.raster, isa, image);
             }
             if (!image.aov.empty())
-                image::resolve_aov_tile(s.raster, rect, s.fragments.inputs(count), view_depth, surface_ids, image);
+                image::resolve_aov_tile(s.raster, rect, with_visibility(s.fragments.inputs(count), s), view_depth,
+                                        surface_ids, image);
         },
         blended);
 }
@@ -705,7 +715,7 @@ void Renderer::Frame::render_tile_msaa(const Scene& scene, const image::ClearVal
                 if (background.shown()) background.paint(rect, s.samples, isa, image);
             }
             if (!image.aov.empty())
-                image::resolve_aov_tile_msaa(s.samples, rect, s.fragments.inputs(count), view_depth,
+                image::resolve_aov_tile_msaa(s.samples, rect, with_visibility(s.fragments.inputs(count), s), view_depth,
                                              {surface_ids, s.sample_fragments.triangle.data()}, image);
         },
         blended);
@@ -831,6 +841,7 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
             if (s.visibility.size() < stride * lights.shadowed_count()) s.visibility.resize(stride * lights.shadowed_count());
             shade::shadow_visibility_planes(inputs, lights, s.visibility.data(), stride);
             direct.visibility = s.visibility.data(), direct.visibility_stride = stride;
+            direct.visibility_planes = lights.shadowed_count();
         }
         if (with_ibl) {
             if (s.zero_ao.size() < shade::padded_count(count)) s.zero_ao.assign(shade::padded_count(count), 0.0f);

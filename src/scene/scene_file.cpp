@@ -67,8 +67,8 @@ public:
         : TomlReader(std::move(source)), base_dir_(std::filesystem::path(this->source()).parent_path()), models_(models) {}
 
     Scene read(const toml::table& root) {
-        check_keys(root, "", {"output", "camera", "lights", "shadows", "environment", "materials", "objects", "models",
-                              "animation"});
+        check_keys(root, "", {"output", "camera", "lights", "environment", "materials", "objects", "models", "animation",
+                              "shadows"});
         Scene scene;
         scene.source = source();
         if (const toml::node* output = root.get("output")) {

@@ -41,6 +41,7 @@ struct FragmentInputs {
     // for the lights that have a slot; null where no light casts shadows.
     const float* visibility = nullptr;
     std::size_t visibility_stride = 0;
+    std::size_t visibility_planes = 0;  // how many (ShadingLights::shadowed_count)
 };
 
 // Fragments [begin, end) of a FragmentBuffer (surface_gather.hpp) that share one material.

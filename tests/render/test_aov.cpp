@@ -99,7 +99,8 @@ TEST_CASE("the EXR holds every AOV by its conventional name, with the plane's de
         {"N.Z", OIIO::TypeDesc::FLOAT},     {"albedo.R", OIIO::TypeDesc::HALF}, {"albedo.G", OIIO::TypeDesc::HALF},
         {"albedo.B", OIIO::TypeDesc::HALF}, {"roughness", OIIO::TypeDesc::HALF}, {"metallic", OIIO::TypeDesc::HALF},
         {"P.X", OIIO::TypeDesc::FLOAT},     {"P.Y", OIIO::TypeDesc::FLOAT},     {"P.Z", OIIO::TypeDesc::FLOAT},
-        {"object_id", OIIO::TypeDesc::UINT}, {"material_id", OIIO::TypeDesc::UINT}};
+        {"object_id", OIIO::TypeDesc::UINT}, {"material_id", OIIO::TypeDesc::UINT},
+        {"shadow", OIIO::TypeDesc::HALF}};
     REQUIRE(file.channel.size() == expected_formats.size());
     for (const auto& [name, format] : expected_formats) {
         CAPTURE(name);
@@ -147,7 +148,9 @@ TEST_CASE("the EXR holds every AOV by its conventional name, with the plane's de
                 // checked as uint in "the EXR stores the ids as uint channels, exactly".
                 CHECK(file.at(x, y, "object_id") > 0.0f);
                 CHECK(file.at(x, y, "material_id") > 0.0f);
+                CHECK(file.at(x, y, "shadow") == 1.0f);  // no light casts shadows
             } else if (inside < -footprint) {
+                CHECK(file.at(x, y, "shadow") == 1.0f);
                 ++background;
                 CHECK(file.at(x, y, "Z") == std::numeric_limits<float>::infinity());
                 for (const char* name : {"N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "roughness",
@@ -234,7 +237,7 @@ TEST_CASE("AOV lists name each AOV, anything else is refused with the list of na
     CHECK_THROWS_WITH_AS(parse_aov_list("depth,colour", set), doctest::Contains("unknown AOV 'colour'"),
                          std::invalid_argument);
     CHECK_THROWS_WITH_AS(parse_aov_list("depth,,normal", set), doctest::Contains("unknown AOV ''"), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(parse_aov_list("Depth", set), doctest::Contains("depth, normal, albedo, roughness, metallic, position, object_id, material_id"),
+    CHECK_THROWS_WITH_AS(parse_aov_list("Depth", set), doctest::Contains("depth, normal, albedo, roughness, metallic, position, object_id, material_id, shadow"),
                          std::invalid_argument);
 }
 

@@ -281,3 +281,38 @@ shadow_map_size = 2048
     CHECK(!plain.lights[0].shadows);
     CHECK(plain.lights[0].shadow_map_size == kDefaultShadowMapSize);
 }
+
+TEST_CASE("shadows: the shadow AOV is the mean visibility of the lights that cast shadows") {
+    // Two shadowed lights, from above and from the side: the cube's two
+    // shadows on the floor are 1/2 where they do not overlap.
+    Scene scene = floor_scene(kDirectional, true, 200);
+    Light side = scene.lights[0];
+    side.direction = glm::normalize(glm::vec3(-1.0f, -0.6f, 0.0f));
+    scene.lights.push_back(side);
+    RenderSettings settings{.threads = 2};
+    settings.aovs.insert(Aov::shadow);
+    settings.aovs.insert(Aov::position);
+    Renderer renderer(settings);
+    const RenderedImage& image = renderer.render(scene);
+    REQUIRE(image.aov.shadow.size() == std::size_t(image.width) * image.height);
+    std::size_t half = 0, lit = 0, dark = 0, outside = 0;
+    for (std::size_t i = 0; i < image.aov.shadow.size(); ++i) {
+        const float v = image.aov.shadow[i];
+        half += v == 0.5f, lit += v == 1.0f, dark += v == 0.0f;
+        outside += !(v >= 0.0f && v <= 1.0f);
+    }
+    CHECK(outside == 0);
+    CHECK(half > 200);  // in one of the two shadows
+    CHECK(lit > half);
+    // Straight under the cube (the floor at the origin) only the light from above is blocked: 1/2.
+    const glm::mat4 view_projection = projection_matrix(scene.camera, scene.width, scene.height) * view_matrix(scene.camera);
+    const glm::vec4 clip = view_projection * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const int x = int((clip.x / clip.w * 0.5f + 0.5f) * float(scene.width));
+    const int y = int((0.5f - clip.y / clip.w * 0.5f) * float(scene.height));
+    CHECK(image.aov.shadow[std::size_t(y) * scene.width + x] == 0.5f);
+    CHECK(dark < half / 20);  // the floor's two shadows do not overlap; a few cube pixels face away from both
+    // Without shadows: 1 everywhere.
+    for (Light& light : scene.lights) light.shadows = false;
+    const RenderedImage& plain = renderer.render(scene);
+    CHECK(std::all_of(plain.aov.shadow.begin(), plain.aov.shadow.end(), [](float v) { return v == 1.0f; }));
+}

@@ -216,7 +216,7 @@ TEST_CASE("the CLI refuses bad files, arguments and sizes") {
         Run run = tessera_render(dir, {scene.string(), "-o", exr.string(), "--aov", "depth,colour"});
         CHECK(run.status == 2);
         CHECK(contains(run.err, "unknown AOV 'colour' in 'depth,colour' (expected a comma-separated list of depth, "
-                                "normal, albedo, roughness, metallic, position, object_id, material_id)"));
+                                "normal, albedo, roughness, metallic, position, object_id, material_id, shadow)"));
         CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
         CHECK_FALSE(fs::exists(exr));
         run = tessera_render(dir, {scene.string(), "-o", out, "--aov", "depth"});
