@@ -79,7 +79,8 @@ int run_bench(const BenchCommand& cmd) {
                                {"shade", &FrameStats::shade_ms, {}},
                                {"resolve", &FrameStats::resolve_ms, {}},
                                {"triangles", &FrameStats::triangles_ms, {}},
-                               {"tiles", &FrameStats::tiles_ms, {}}};
+                               {"tiles", &FrameStats::tiles_ms, {}},
+                               {"shadows", &FrameStats::shadow_ms, {}}};
     std::vector<double> total;
     total.reserve(std::size_t(cmd.frames));
     std::vector<profile::TracedFrame> traced;  // with --trace/--heatmap: every timed frame's timeline

@@ -839,7 +839,7 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
         if (lights.shadowed_count() > 0) {  // each shadowed light's visibility, scaling its share of Lo
             const std::size_t stride = shade::padded_count(count);
             if (s.visibility.size() < stride * lights.shadowed_count()) s.visibility.resize(stride * lights.shadowed_count());
-            shade::shadow_visibility_planes(inputs, lights, s.visibility.data(), stride);
+            shade::shadow_visibility_planes(isa, inputs, lights, s.visibility.data(), stride);
             direct.visibility = s.visibility.data(), direct.visibility_stride = stride;
             direct.visibility_planes = lights.shadowed_count();
         }

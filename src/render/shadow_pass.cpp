@@ -64,13 +64,17 @@ void ShadowPass::prepare(const Scene& scene) {
 void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4& view_projection, int size,
                               std::span<float> depth, const shade::ShadowMap* distances) {
     if (depth.size() != std::size_t(size) * size) throw std::invalid_argument("shadow map storage of the wrong size");
-    std::fill(depth.begin(), depth.end(), 1.0f);
     // The casters this view can see, in scene order.
     objects_.clear();
     for (std::size_t o = 0; o < scene.objects.size(); ++o)
         if (!object_bounds_[o].empty && !outside_view(object_bounds_[o], view_projection))
             objects_.push_back(std::uint32_t(o));
-    if (objects_.empty()) return;
+    if (objects_.empty()) {  // nothing drawn: every texel cleared, in parallel
+        tbb::parallel_for(std::size_t(0), std::size_t(size), [&](std::size_t row) {
+            std::fill_n(depth.data() + row * std::size_t(size), size, 1.0f);
+        });
+        return;
+    }
 
     // The vertex pass.
     first_vertex_.resize(objects_.size());
@@ -126,14 +130,18 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
     });
     tile_bins_.build(grid_, chunk_count_, [&](std::size_t c) -> const raster::ChunkBins& { return chunks_[c].bins; });
 
-    // The tile pass: nearest depth per texel, copied into the map.
+    // The tile pass: nearest depth per texel, copied into the map (each texel
+    // written once: an empty tile is cleared to 1 here, not before).
     tbb::parallel_for(0, grid_.tile_count(), [&](int tile) {
         const auto entries = tile_bins_.tile(tile);
-        if (entries.empty()) return;
+        const raster::TileRect rect = grid_.rect(tile);
+        if (entries.empty()) {
+            for (int y = rect.y0; y < rect.y1; ++y) std::fill_n(depth.data() + std::size_t(y) * size + rect.x0, rect.width(), 1.0f);
+            return;
+        }
         raster::TileBuffers& buffers = tiles_.local();
         buffers.reset(kShadowTileSize);
         raster::RasterCounters counters;
-        const raster::TileRect rect = grid_.rect(tile);
         for (const raster::TileBinIndex::Entry& entry : entries) {
             const Chunk& chunk = chunks_[entry.chunk];
             const std::span<const std::uint32_t> bin(chunk.bins.items.data() + entry.first, entry.last - entry.first);

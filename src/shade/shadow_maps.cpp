@@ -152,7 +152,7 @@ void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light&
         break;
     }
     }
-    map.depth.assign(std::size_t(map.faces) * map.size * map.size, 1.0f);
+    map.depth.resize(std::size_t(map.faces) * map.size * map.size);  // every texel written by the depth pass
 }
 
 float distance_from_window_depth(const ShadowMap& map, float d, int column, int row) {
@@ -175,21 +175,22 @@ float sample_planar(const ShadowMap& map, float s, float t) {
 }
 
 // texture(depthMap, direction).r with GL_NEAREST and GL_CLAMP_TO_EDGE: the face
-// of the major axis, s and t from GL's table of sc, tc and ma.
-float sample_cube(const ShadowMap& map, const glm::vec3& d) {
-    const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+// of the major axis, s and t from GL's table of sc, tc and ma. Spelled out
+// operation by operation: shadow_kernels_simd.cpp does the same ones.
+float sample_cube(const ShadowMap& map, float dx, float dy, float dz) {
+    const float ax = std::abs(dx), ay = std::abs(dy), az = std::abs(dz);
     int face;
     float sc, tc, ma;
-    if (ax >= ay && ax >= az) face = d.x >= 0.0f ? 0 : 1, sc = d.x >= 0.0f ? -d.z : d.z, tc = -d.y, ma = ax;
-    else if (ay >= az) face = d.y >= 0.0f ? 2 : 3, sc = d.x, tc = d.y >= 0.0f ? d.z : -d.z, ma = ay;
-    else face = d.z >= 0.0f ? 4 : 5, sc = d.z >= 0.0f ? d.x : -d.x, tc = -d.y, ma = az;
-    if (!(ma > 0.0f)) return 1.0f;  // zero or NaN: nothing to look up
+    if (ax >= ay && ax >= az) face = dx >= 0.0f ? 0 : 1, sc = dx >= 0.0f ? -dz : dz, tc = -dy, ma = ax;
+    else if (ay >= az) face = dy >= 0.0f ? 2 : 3, sc = dx, tc = dy >= 0.0f ? dz : -dz, ma = ay;
+    else face = dz >= 0.0f ? 4 : 5, sc = dz >= 0.0f ? dx : -dx, tc = -dy, ma = az;
     const float s = (sc / ma + 1.0f) * 0.5f, t = (tc / ma + 1.0f) * 0.5f;
-    const float last = float(map.size - 1);
-    const float column = std::clamp(std::floor(s * float(map.size)), 0.0f, last);
-    const float row_from_bottom = std::clamp(std::floor(t * float(map.size)), 0.0f, last);
-    if (!(column >= 0.0f) || !(row_from_bottom >= 0.0f)) return 1.0f;  // NaN
-    return map.texel(face, int(column), map.size - 1 - int(row_from_bottom));
+    const float size = float(map.size), last = float(map.size - 1);
+    const float column = std::floor(s * size), row_from_bottom = std::floor(t * size);
+    // Zero, NaN or infinite directions: nothing to look up (lit).
+    if (!(ma > 0.0f) || !(column == column) || !(row_from_bottom == row_from_bottom)) return 1.0f;
+    const float c = std::min(std::max(column, 0.0f), last), r = std::min(std::max(row_from_bottom, 0.0f), last);
+    return map.texel(face, int(c), map.size - 1 - int(r));
 }
 
 // 3.1.3's ShadowCalculation (for a spot: its current depth a distance / far_plane).
@@ -219,19 +220,22 @@ float planar_shadow(const ShadowMap& map, const glm::vec3& world_pos, const glm:
 }
 
 // 3.2.2's ShadowCalculation (filter radius 0: its single-sample variant).
+// Lengths as (x² + y²) + z², like shadow_kernels_simd.cpp.
 float cube_shadow(const ShadowMap& map, const glm::vec3& frag_pos, const glm::vec3& view_pos) {
-    const glm::vec3 frag_to_light = frag_pos - map.position;
-    const float current_depth = glm::length(frag_to_light);
+    const float fx = frag_pos.x - map.position.x, fy = frag_pos.y - map.position.y, fz = frag_pos.z - map.position.z;
+    const float current_depth = std::sqrt((fx * fx + fy * fy) + fz * fz);
     const float bias = 0.15f;
     if (map.filter_radius == 0) {
-        const float closest_depth = sample_cube(map, frag_to_light) * map.far_plane;
+        const float closest_depth = sample_cube(map, fx, fy, fz) * map.far_plane;
         return current_depth - bias > closest_depth ? 1.0f : 0.0f;
     }
     float shadow = 0.0f;
-    const float view_distance = glm::length(view_pos - frag_pos);
+    const float vx = view_pos.x - frag_pos.x, vy = view_pos.y - frag_pos.y, vz = view_pos.z - frag_pos.z;
+    const float view_distance = std::sqrt((vx * vx + vy * vy) + vz * vz);
     const float disk_radius = (1.0f + (view_distance / map.disk_far_plane)) / 25.0f * float(map.filter_radius);
     for (const glm::vec3& offset : kGridSamplingDisk) {
-        float closest_depth = sample_cube(map, frag_to_light + offset * disk_radius);
+        float closest_depth =
+            sample_cube(map, fx + offset.x * disk_radius, fy + offset.y * disk_radius, fz + offset.z * disk_radius);
         closest_depth *= map.far_plane;  // undo mapping [0;1]
         if (current_depth - bias > closest_depth) shadow += 1.0f;
     }
@@ -248,12 +252,35 @@ float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const 
     return 1.0f - shadow;
 }
 
-void shadow_visibility_planes(const FragmentInputs& in, const ShadingLights& lights, float* planes,
+// Defined in shadow_kernels_simd.cpp, once per ISA: 1 − cube_shadow of
+// fragments [0, count) rounded up to whole vectors.
+#define TESSERA_DECLARE_SHADOW_ENTRIES(suffix)                                                                  \
+    void cube_visibility_##suffix(const CubeMapView& map, const float* x, const float* y, const float* z,     \
+                                  std::size_t count, const glm::vec3& view_pos, float* out);
+TESSERA_DECLARE_SHADOW_ENTRIES(sse4)
+TESSERA_DECLARE_SHADOW_ENTRIES(avx2)
+TESSERA_DECLARE_SHADOW_ENTRIES(avx512)
+#undef TESSERA_DECLARE_SHADOW_ENTRIES
+
+void shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
                               std::size_t stride) {
+    simd::require_supported(isa);
     const std::size_t padded = padded_count(in.count);
     for (std::size_t slot = 0; slot < lights.shadowed_count(); ++slot) {
         const ShadowMap& map = *lights.shadow_maps[slot];
         float* plane = planes + slot * stride;
+        if (map.kind == ShadowMapKind::cube_distance && isa != Isa::scalar) {
+            const CubeMapView view{map.depth.data(), map.size, map.filter_radius, map.position.x, map.position.y,
+                                   map.position.z, map.far_plane, map.disk_far_plane};
+            switch (isa) {
+            case Isa::scalar: break;
+            case Isa::sse4: cube_visibility_sse4(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
+            case Isa::avx2: cube_visibility_avx2(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
+            case Isa::avx512: cube_visibility_avx512(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
+            }
+            for (std::size_t i = in.count; i < padded; ++i) plane[i] = 1.0f;
+            continue;
+        }
         for (std::size_t i = 0; i < in.count; ++i)
             plane[i] = shadow_visibility(map, {in.world_x[i], in.world_y[i], in.world_z[i]},
                                          {in.normal_x[i], in.normal_y[i], in.normal_z[i]}, lights.cam_pos);

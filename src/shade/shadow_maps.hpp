@@ -82,7 +82,7 @@ struct ShadowMap {
 };
 
 // The light camera(s) for `light` in `scene` (bounds: scene_bounds(scene)), and
-// the map's size; depth is sized and left for the depth pass to fill.
+// the map's size; depth is sized (its values left as they were) for the depth pass to fill.
 void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light& light, ShadowMap& map);
 
 // What a distance map (spot, point) stores at texel (column, row) of a face
@@ -101,8 +101,18 @@ float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const 
 // shadow_visibility of in's fragments for every shadowed light of `lights`:
 // slot s's (ShadingLights::shadow_maps[s]) at planes[s · stride + i], for
 // i < padded_count(in.count) (1 in the padding). stride >= padded_count(in.count).
-void shadow_visibility_planes(const FragmentInputs& in, const ShadingLights& lights, float* planes,
+// With a SIMD ISA, cube maps are looked up a vector of fragments at a time
+// (shadow_kernels_simd.cpp: the same operations, so the same bits; 2D maps
+// take the scalar code for every ISA).
+void shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
                               std::size_t stride);
+
+// What the cube kernels read of a cube map (plain values: no std::vector in per-ISA code).
+struct CubeMapView {
+    const float* depth;
+    int size, filter_radius;
+    float position_x, position_y, position_z, far_plane, disk_far_plane;
+};
 
 // The 20 offsets of the point chapter's gridSamplingDisk.
 extern const std::array<glm::vec3, 20> kGridSamplingDisk;

@@ -2,6 +2,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -127,4 +130,46 @@ TEST_CASE("distance maps store distance / far_plane through each texel's centre"
     const float ndc_x = (5.5f / 8.0f) * 2.0f - 1.0f, ndc_y = 1.0f - (2.5f / 8.0f) * 2.0f;
     const float expected = 4.0f * std::sqrt(1.0f + ndc_x * ndc_x + ndc_y * ndc_y) / 20.0f;
     CHECK(distance_from_window_depth(map, window, 5, 2) == doctest::Approx(expected).epsilon(1e-4));
+}
+
+TEST_CASE("cube shadow kernels: every ISA gives the scalar lookup's bits") {
+    std::mt19937 rng(32);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), box(-6.0f, 6.0f);
+    ShadowMap map;
+    map.kind = ShadowMapKind::cube_distance;
+    map.size = 37, map.faces = 6;
+    map.position = {0.5f, -0.25f, 1.0f};
+    map.far_plane = 9.0f, map.disk_far_plane = 30.0f;
+    map.depth.resize(6 * 37 * 37);
+    for (float& d : map.depth) d = unit(rng) < 0.1f ? 1.0f : 0.2f + 0.6f * unit(rng);  // blocky: some lit, some not
+    const std::size_t count = 3001;
+    std::vector<float> x(padded_count(count)), y(x.size()), z(x.size()), n(x.size(), 1.0f);
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = box(rng), y[i] = box(rng), z[i] = box(rng);
+    x[5] = map.position.x, y[5] = map.position.y, z[5] = map.position.z;  // at the light: no direction
+    x[6] = NAN;
+    x[7] = map.position.x + 2.0f, y[7] = map.position.y + 2.0f, z[7] = map.position.z;  // on a face edge
+    std::vector<Light> light_list(1);
+    ShadingLights lights;
+    lights.assign({0.0f, 3.0f, 8.0f}, light_list);
+    const ShadowMap* by_light[] = {&map};
+    lights.assign_shadows(by_light);
+    const FragmentInputs in{count, x.data(), y.data(), z.data(), n.data(), n.data(), n.data()};
+    for (const int radius : {0, 1, 3}) {
+        map.filter_radius = radius;
+        std::vector<float> reference(x.size(), -1.0f);
+        shadow_visibility_planes(Isa::scalar, in, lights, reference.data(), x.size());
+        std::size_t fractional = 0;
+        for (std::size_t i = 0; i < count; ++i) fractional += reference[i] > 0.0f && reference[i] < 1.0f;
+        if (radius > 0) CHECK(fractional > 100);
+        for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+            if (!isa_supported(isa)) continue;
+            CAPTURE(isa_name(isa));
+            CAPTURE(radius);
+            std::vector<float> out(x.size(), -1.0f);
+            shadow_visibility_planes(isa, in, lights, out.data(), x.size());
+            std::size_t different = 0;
+            for (std::size_t i = 0; i < x.size(); ++i) different += std::memcmp(&out[i], &reference[i], sizeof(float)) != 0;
+            CHECK(different == 0);
+        }
+    }
 }
