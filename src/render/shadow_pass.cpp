@@ -13,6 +13,7 @@
 #include "raster/bin_rasterizer.hpp"
 #include "raster/triangle_assembly.hpp"
 #include "render/huge_pages.hpp"
+#include "shade/alpha_mask.hpp"
 
 namespace tessera::render {
 
@@ -112,6 +113,13 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
             chunk.object = objects_[e];
             chunk.first_triangle = first;
             chunk.triangle_count = std::min(kChunkTriangles, triangles - first);
+            // Masked materials take their alpha test here too (what the
+            // colours and second uvs are kept for), so that a cut-out casts its shape.
+            const Mesh& mesh = scene.meshes[scene.objects[objects_[e]].mesh];
+            chunk.material = &scene.materials[scene.objects[objects_[e]].material];
+            chunk.alpha_tested = chunk.material->alpha_mode == AlphaMode::mask;
+            chunk.colors = chunk.alpha_tested && !mesh.colors.empty() ? mesh.colors.data() : nullptr;
+            chunk.uvs1 = chunk.alpha_tested && !mesh.uvs1.empty() && chunk.material->has_maps() ? mesh.uvs1.data() : nullptr;
             chunk_entry_.push_back(std::uint32_t(e));
         }
     }
@@ -125,7 +133,9 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
         chunk.assembled.clear();
         reserve_huge(chunk.assembled.triangles, chunk.triangle_count + raster::kAssemblyRoom);
         raster::assemble_triangles(isa, indices, first_vertex_[chunk_entry_[c]], std::uint32_t(mesh.positions.size()),
-                                   frame, viewport, guard, chunk.assembled, 1, raster::Culling::none);
+                                   frame, viewport, guard, chunk.assembled, 1, raster::Culling::none,
+                                   {chunk.colors, chunk.colors ? mesh.colors.size() : 0}, false,
+                                   {chunk.uvs1, chunk.uvs1 ? mesh.uvs1.size() : 0});
         chunk.bins.build(grid_, chunk.assembled.triangles);
     });
     tile_bins_.build(grid_, chunk_count_, [&](std::size_t c) -> const raster::ChunkBins& { return chunks_[c].bins; });
@@ -145,8 +155,17 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
         for (const raster::TileBinIndex::Entry& entry : entries) {
             const Chunk& chunk = chunks_[entry.chunk];
             const std::span<const std::uint32_t> bin(chunk.bins.items.data() + entry.first, entry.last - entry.first);
-            raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, entry.chunk << kChunkIdShift, rect,
-                                  buffers, counters);
+            if (!chunk.alpha_tested) {
+                raster::rasterize_bin(isa, chunk.assembled.triangles.data(), bin, entry.chunk << kChunkIdShift, rect,
+                                      buffers, counters);
+                continue;
+            }
+            for (const std::uint32_t index : bin) {
+                const raster::RasterTriangle& t = chunk.assembled.triangles[index];
+                const shade::AlphaMaskTriangle mask{corners_of(chunk, t), scene.textures};
+                const std::uint32_t position = buffers.triangles.add((entry.chunk << kChunkIdShift) | index);
+                raster::rasterize_triangle(t, position, rect, buffers, counters, {shade::alpha_mask_keep, &mask});
+            }
         }
         for (int y = rect.y0; y < rect.y1; ++y) {
             const float* from = buffers.depth.data() + std::size_t(y - rect.y0) * kShadowTileSize;
@@ -160,6 +179,22 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
         }
     });
     for (std::size_t c = 0; c < chunk_count_; ++c) triangles_drawn_ += chunks_[c].assembled.triangles.size();
+}
+
+shade::TriangleCorners ShadowPass::corners_of(const Chunk& chunk, const raster::RasterTriangle& t) const {
+    shade::TriangleCorners corners{{&chunk.vertex(t.vertex[0], vertices_), &chunk.vertex(t.vertex[1], vertices_),
+                                    &chunk.vertex(t.vertex[2], vertices_)},
+                                   chunk.material};
+    // As the frame's corners_of: the barycentrics' steps per pixel (the texture's level of detail).
+    const float scale = float(geometry::kSubpixelScale) * t.inv_area;
+    corners.lambda1_dx = -float(t.y[0] - t.y[2]) * scale, corners.lambda1_dy = float(t.x[0] - t.x[2]) * scale;
+    corners.lambda2_dx = -float(t.y[1] - t.y[0]) * scale, corners.lambda2_dy = float(t.x[1] - t.x[0]) * scale;
+    const std::uint32_t first = first_vertex_[chunk_entry_[&chunk - chunks_.data()]];
+    if (chunk.colors)
+        for (int k = 0; k < 3; ++k) corners.color[k] = &chunk.color(t.vertex[k], first);
+    if (chunk.uvs1)
+        for (int k = 0; k < 3; ++k) corners.uv1[k] = &chunk.uv1(t.vertex[k], first);
+    return corners;
 }
 
 void ShadowPass::render_maps(simd::Isa isa, const Scene& scene, std::vector<shade::ShadowMap>& maps,

@@ -16,6 +16,7 @@
 #include "raster/binning.hpp"
 #include "raster/tile_rasterizer.hpp"
 #include "render/frame_memory.hpp"
+#include "shade/surface_gather.hpp"
 #include "shade/shadow_maps.hpp"
 #include "simd/isa.hpp"
 #include "tessera/scene.hpp"
@@ -32,7 +33,8 @@ public:
     // Window depths of the scene's casters seen through view_projection,
     // nearest per texel (LESS), into `depth`: size × size texels, row 0 at the
     // top, 1 where nothing was drawn. Every triangle is drawn, front or back
-    // facing (the chapter's depth pass culls nothing). With `distances`, each
+    // facing (the chapter's depth pass culls nothing); a masked material's
+    // fragments take its alpha test (shade/alpha_mask.hpp), as in the frame. With `distances`, each
     // covered texel is stored as shade::distance_from_window_depth(*distances, ...).
     void render_depth(simd::Isa isa, const Scene& scene, const glm::mat4& view_projection, int size,
                       std::span<float> depth, const shade::ShadowMap* distances = nullptr);
@@ -45,6 +47,7 @@ public:
     std::uint64_t triangles_drawn() const { return triangles_drawn_; }
 
 private:
+    shade::TriangleCorners corners_of(const Chunk& chunk, const raster::RasterTriangle& t) const;
     shade::SceneBounds bounds_;
     std::vector<shade::SceneBounds> object_bounds_;  // per object; empty: casts no shadow
     std::vector<std::uint32_t> objects_;             // the current view's casters

@@ -51,7 +51,7 @@ struct SceneBounds {
 };
 SceneBounds scene_bounds(const Scene& scene);
 // Whether Renderer draws `object` into shadow maps: every object but blended ones
-// (a masked material casts as if opaque).
+// (a masked material casts where its alpha test keeps the surface).
 bool casts_shadow(const Scene& scene, const Object& object);
 
 enum class ShadowMapKind : std::uint8_t {

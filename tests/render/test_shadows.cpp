@@ -316,3 +316,19 @@ TEST_CASE("shadows: the shadow AOV is the mean visibility of the lights that cas
     const RenderedImage& plain = renderer.render(scene);
     CHECK(std::all_of(plain.aov.shadow.begin(), plain.aov.shadow.end(), [](float v) { return v == 1.0f; }));
 }
+
+TEST_CASE("shadows: a masked caster casts where its alpha test keeps it, a blended one not at all") {
+    const auto visibility_under_cube = [](const std::string& cube_material) {
+        const Scene scene = parse_scene(
+            "[camera]\nposition = [0, 7, 9]\ntarget = [0, 0, 0]\n[[lights]]\n" + std::string(kDirectional) +
+                "\n[[objects]]\nmesh = \"plane\"\nscale = 5\n"
+                "[[objects]]\nmesh = \"cube\"\ntranslate = [0, 1, 0]\nscale = 0.5\nmaterial = " + cube_material + "\n",
+            "masked");
+        const Maps m = render_maps(scene);
+        return shadow_visibility(*m.by_light[0], {0.0f, 0.0f, 0.0f}, {0, 1, 0}, scene.camera.position);
+    };
+    CHECK(visibility_under_cube("{ alpha_mode = \"mask\", alpha = 0.8 }") == 0.0f);        // kept
+    CHECK(visibility_under_cube("{ alpha_mode = \"mask\", alpha = 0.3 }") == 1.0f);        // discarded
+    CHECK(visibility_under_cube("{ alpha_mode = \"blend\", alpha = 0.9 }") == 1.0f);       // never cast
+    CHECK(visibility_under_cube("{ albedo = [0.5, 0.5, 0.5] }") == 0.0f);                   // opaque
+}
