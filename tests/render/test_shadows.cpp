@@ -11,7 +11,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <OpenImageIO/imageio.h>
+
+#include "cli_runner.hpp"
 #include "render/isa_agreement.hpp"
+#include "scene/gltf_test_files.hpp"
+#include "test_paths.hpp"
 #include "render/shadow_pass.hpp"
 #include "shade/shadow_maps.hpp"
 #include "simd/isa.hpp"
@@ -331,4 +336,53 @@ TEST_CASE("shadows: a masked caster casts where its alpha test keeps it, a blend
     CHECK(visibility_under_cube("{ alpha_mode = \"mask\", alpha = 0.3 }") == 1.0f);        // discarded
     CHECK(visibility_under_cube("{ alpha_mode = \"blend\", alpha = 0.9 }") == 1.0f);       // never cast
     CHECK(visibility_under_cube("{ albedo = [0.5, 0.5, 0.5] }") == 0.0f);                   // opaque
+}
+
+// A glTF file on its own (no camera, no lights): `tessera render` frames it and
+// lights it with the shipped environment and a key light that casts shadows.
+TEST_CASE("shadows: a glTF file on its own gets a key light with shadows (tessera render --aov shadow)") {
+    // A 10×10 wall at z = 0 and a 2×2 square in front of it at z = 1.5, both facing +z
+    // (the default framing looks along −z), unindexed.
+    std::vector<std::uint8_t> bytes;
+    const auto quad = [&](float half, float z) {
+        // Counter-clockwise seen from +z: glTF's front faces (the material is single-sided).
+        const float q[6][2] = {{-half, -half}, {half, -half}, {half, half}, {-half, -half}, {half, half}, {-half, half}};
+        for (const auto& corner : q) test::append_floats(bytes, {corner[0], corner[1], z});
+    };
+    quad(5.0f, 0.0f);
+    quad(1.0f, 1.5f);
+    for (int i = 0; i < 12; ++i) test::append_floats(bytes, {0.0f, 0.0f, 1.0f});
+    const std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 12, "type": "VEC3", "min": [-5, -5, 0], "max": [5, 5, 1.5]},
+    {"bufferView": 1, "componentType": 5126, "count": 12, "type": "VEC3"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 144}, {"buffer": 0, "byteOffset": 144, "byteLength": 144}],
+  "buffers": [{"byteLength": 288, "uri": "data:application/octet-stream;base64,)" +
+                             test::base64(bytes) + R"("}]})";
+    const auto dir = test::output_dir("shadows_gltf_alone");
+    test::write_bytes(dir / "wall.gltf", json);
+    const auto shadow_channel = [&](const std::string& lighting) {
+        const auto exr = dir / ("wall_" + lighting + ".exr");
+        const test::CliRun run = test::run_tessera(dir, "render", {(dir / "wall.gltf").string(), "-o", exr.string(),
+                                                                   "--aov", "shadow", "--width", "160", "--height",
+                                                                   "90", "--lighting", lighting});
+        REQUIRE_MESSAGE(run.status == 0, run.err);
+        auto in = OIIO::ImageInput::open(exr.string());
+        REQUIRE(in);
+        const OIIO::ImageSpec spec = in->spec();
+        const int channel = spec.channelindex("shadow");
+        REQUIRE(channel >= 0);
+        std::vector<float> values(std::size_t(spec.width) * spec.height);
+        REQUIRE(in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::FLOAT, values.data()));
+        return values;
+    };
+    const std::vector<float> auto_look = shadow_channel("auto");
+    const std::size_t shadowed = std::count_if(auto_look.begin(), auto_look.end(), [](float v) { return v < 0.5f; });
+    CHECK(shadowed > 100);  // the square's shadow on the wall
+    CHECK(shadowed < auto_look.size() / 4);
+    // The reference look's four point lights cast none.
+    const std::vector<float> reference = shadow_channel("reference");
+    CHECK(std::all_of(reference.begin(), reference.end(), [](float v) { return v == 1.0f; }));
 }
