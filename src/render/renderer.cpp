@@ -126,9 +126,12 @@ void check_renderable(const Scene& scene) {
     }
     if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
         throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
+    std::uint64_t shadow_texels = 0;  // the frame's shadow maps, 4 bytes each
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& light = scene.lights[l];
         if (!light.shadows) continue;
+        shadow_texels += std::uint64_t(light.type == LightType::point ? 6 : 1) *
+                         std::uint64_t(std::max(light.shadow_map_size, 0)) * std::uint64_t(std::max(light.shadow_map_size, 0));
         if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize ||
             light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius)
             throw std::invalid_argument("light " + std::to_string(l) + ": shadow map size " +
@@ -137,6 +140,11 @@ void check_renderable(const Scene& scene) {
                                         std::to_string(kMinShadowMapSize) + ".." + std::to_string(kMaxShadowMapSize) +
                                         " and 0.." + std::to_string(kMaxShadowFilterRadius));
     }
+    if (shadow_texels * sizeof(float) > kMaxShadowMapBytes)
+        throw std::invalid_argument("the lights' shadow maps would take " +
+                                    std::to_string(shadow_texels * sizeof(float) >> 20) + " MiB, more than " +
+                                    std::to_string(kMaxShadowMapBytes >> 20) +
+                                    " MiB: give fewer lights shadows or smaller shadow_map_size");
 }
 
 // Sizes the AOV planes the settings ask for (memory kept from frame to

@@ -386,3 +386,14 @@ TEST_CASE("shadows: a glTF file on its own gets a key light with shadows (tesser
     const std::vector<float> reference = shadow_channel("reference");
     CHECK(std::all_of(reference.begin(), reference.end(), [](float v) { return v == 1.0f; }));
 }
+
+TEST_CASE("shadows: maps that would take more than kMaxShadowMapBytes together are refused") {
+    Scene scene = floor_scene(kPoint);
+    scene.lights[0].shadow_map_size = kMaxShadowMapSize;  // 6 × 8192² × 4 bytes = 1.5 GiB: allowed alone
+    Light second = scene.lights[0];
+    second.position.x += 1.0f;
+    scene.lights.push_back(second);  // 3 GiB
+    Renderer renderer({.threads = 1});
+    CHECK_THROWS_WITH_AS(renderer.render(scene), doctest::Contains("shadow maps would take 3072 MiB, more than 2048 MiB"),
+                         std::invalid_argument);
+}
