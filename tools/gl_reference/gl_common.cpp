@@ -40,21 +40,21 @@ void check_gl(const char* where) {
     }
 }
 
-GLuint link_program(const std::string& vertex_source, const std::string& fragment_source, const char* name) {
-    const GLuint vs = compile_shader(GL_VERTEX_SHADER, vertex_source, "vertex shader");
-    GLuint fs = 0;
+GLuint link_program(const std::string& vertex_source, const std::string& geometry_source,
+                    const std::string& fragment_source, const char* name) {
+    std::vector<GLuint> shaders;
     try {
-        fs = compile_shader(GL_FRAGMENT_SHADER, fragment_source, name);
+        shaders.push_back(compile_shader(GL_VERTEX_SHADER, vertex_source, "vertex shader"));
+        if (!geometry_source.empty()) shaders.push_back(compile_shader(GL_GEOMETRY_SHADER, geometry_source, name));
+        shaders.push_back(compile_shader(GL_FRAGMENT_SHADER, fragment_source, name));
     } catch (...) {
-        glDeleteShader(vs);
+        for (const GLuint shader : shaders) glDeleteShader(shader);
         throw;
     }
     const GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
+    for (const GLuint shader : shaders) glAttachShader(program, shader);
     glLinkProgram(program);
-    glDeleteShader(vs);  // flagged; freed with the program
-    glDeleteShader(fs);
+    for (const GLuint shader : shaders) glDeleteShader(shader);  // flagged; freed with the program
     GLint ok = GL_FALSE, log_length = 0;
     glGetProgramiv(program, GL_LINK_STATUS, &ok);
     glGetProgramiv(program, GL_INFO_LOG_LENGTH, &log_length);
@@ -65,6 +65,10 @@ GLuint link_program(const std::string& vertex_source, const std::string& fragmen
         fail(std::string(name) + " program failed to link:\n" + log.c_str());
     }
     return program;
+}
+
+GLuint link_program(const std::string& vertex_source, const std::string& fragment_source, const char* name) {
+    return link_program(vertex_source, std::string(), fragment_source, name);
 }
 
 std::vector<float> GlReferenceRenderer::evaluate_glsl(const std::string& expression, const std::vector<float>& inputs) {

@@ -15,5 +15,8 @@ namespace tessera::gl_reference {
 void check_gl(const char* where);
 // Compiles and links; a compile or link failure throws with the driver's log.
 GLuint link_program(const std::string& vertex_source, const std::string& fragment_source, const char* name);
+// The same with a geometry shader between them.
+GLuint link_program(const std::string& vertex_source, const std::string& geometry_source,
+                    const std::string& fragment_source, const char* name);
 
 }  // namespace tessera::gl_reference

@@ -15,6 +15,7 @@
 
 #include "gl_common.hpp"
 #include "gl_ibl.hpp"
+#include "gl_shadows.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -48,14 +49,24 @@ void main() {
 // LIGHT_ARRAY_SIZE = max(LIGHT_COUNT, 1) entries (GLSL has no empty arrays) and the
 // loop runs LIGHT_COUNT times, so a scene without lights gets ambient only. With an
 // environment, IBL_DECLARATIONS and IBL_AMBIENT splice in the IBL chapter's pbr.fs (gl_ibl.cpp):
-// its ambient term in place of 0.03·albedo·ao.
+// its ambient term in place of 0.03·albedo·ao. With LIGHT_TYPES (a directional or spot light in
+// the scene) the loop's first lines take each light's type as pbr_lighting.md's "Other light
+// types" says; with SHADOWS, SHADOW_DECLARATIONS splices in the shadow chapters' functions
+// (gl_shadows.cpp) and each light's term of Lo is scaled by its 1 − shadow. Without either the
+// shader is the reference's, line for line.
 constexpr const char* kFragmentShaderBody = R"(
 in vec2 TexCoords; in vec3 WorldPos; in vec3 Normal;
 out vec4 FragColor;
 uniform vec3  albedo;  uniform float metallic;  uniform float roughness;  uniform float ao;
 uniform vec3  lightPositions[LIGHT_ARRAY_SIZE];  uniform vec3 lightColors[LIGHT_ARRAY_SIZE];  uniform vec3 camPos;
+#if LIGHT_TYPES
+uniform int lightTypes[LIGHT_ARRAY_SIZE];  // 0 point, 1 directional, 2 spot
+uniform vec3 lightDirections[LIGHT_ARRAY_SIZE];  // where the light travels, unit
+uniform float lightCosInner[LIGHT_ARRAY_SIZE];  uniform float lightCosOuter[LIGHT_ARRAY_SIZE];
+#endif
 const float PI = 3.14159265359;
 IBL_DECLARATIONS
+SHADOW_DECLARATIONS
 float DistributionGGX(vec3 N, vec3 H, float roughness) {
     float a = roughness*roughness; float a2 = a*a;
     float NdotH = max(dot(N, H), 0.0); float NdotH2 = NdotH*NdotH;
@@ -78,17 +89,37 @@ void main() {
     vec3 F0 = mix(vec3(0.04), albedo, metallic);
     vec3 Lo = vec3(0.0);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
+#if LIGHT_TYPES
+        vec3 L; vec3 radiance;
+        if (lightTypes[i] == 1) {  // directional: L = -direction, no attenuation
+            L = -lightDirections[i];
+            radiance = lightColors[i];
+        } else {
+            L = normalize(lightPositions[i] - WorldPos);
+            float distance = length(lightPositions[i] - WorldPos);
+            radiance = lightColors[i] / (distance * distance);
+            if (lightTypes[i] == 2)  // spot: the clamp ramp between the cones
+                radiance *= clamp((dot(lightDirections[i], -L) - lightCosOuter[i]) / (lightCosInner[i] - lightCosOuter[i]),
+                                  0.0, 1.0);
+        }
+        vec3 H = normalize(V + L);
+#else
         vec3 L = normalize(lightPositions[i] - WorldPos);
         vec3 H = normalize(V + L);
         float distance = length(lightPositions[i] - WorldPos);
         vec3 radiance = lightColors[i] / (distance * distance);
+#endif
         float NDF = DistributionGGX(N, H, roughness);
         float G   = GeometrySmith(N, V, L, roughness);
         vec3  F   = fresnelSchlick(max(dot(H, V), 0.0), F0);
         vec3 kD = (vec3(1.0) - F) * (1.0 - metallic);
         vec3 specular = NDF * G * F / (4.0 * max(dot(N, V), 0.0) * max(dot(N, L), 0.0) + 0.0001);
         float NdotL = max(dot(N, L), 0.0);
+#if SHADOWS
+        Lo += lightVisibility(i) * ((kD * albedo / PI + specular) * radiance * NdotL);
+#else
         Lo += (kD * albedo / PI + specular) * radiance * NdotL;
+#endif
     }
 #if ENVIRONMENT
 IBL_AMBIENT
@@ -146,6 +177,7 @@ struct Uniforms {
     GLint projection = -1, view = -1, model = -1, normal_matrix = -1;
     GLint albedo = -1, metallic = -1, roughness = -1, ao = -1, cam_pos = -1;
     GLint light_positions = -1, light_colors = -1, object_id = -1;
+    GLint light_types = -1, light_directions = -1, light_cos_inner = -1, light_cos_outer = -1;
 
     explicit Uniforms(GLuint program) {
         projection = glGetUniformLocation(program, "projection");
@@ -160,6 +192,10 @@ struct Uniforms {
         light_positions = glGetUniformLocation(program, "lightPositions");
         light_colors = glGetUniformLocation(program, "lightColors");
         object_id = glGetUniformLocation(program, "objectId");
+        light_types = glGetUniformLocation(program, "lightTypes");
+        light_directions = glGetUniformLocation(program, "lightDirections");
+        light_cos_inner = glGetUniformLocation(program, "lightCosInner");
+        light_cos_outer = glGetUniformLocation(program, "lightCosOuter");
     }
     Uniforms() = default;
 };
@@ -186,6 +222,8 @@ struct GlReferenceRenderer::State {
     GLuint pbr_program = 0;
     int pbr_light_count = -1;  // the LIGHT_COUNT pbr_program was built for
     bool pbr_environment = false;  // and whether with the IBL ambient
+    bool pbr_light_types = false;  // with LIGHT_TYPES
+    std::string pbr_shadows;       // the SHADOW_DECLARATIONS it was built with
     Uniforms pbr_uniforms;
     GLuint id_program = 0;
     Uniforms id_uniforms;
@@ -194,10 +232,13 @@ struct GlReferenceRenderer::State {
 
     std::unique_ptr<GlIbl> ibl;  // made for the first scene with an environment
     IblOptions ibl_options;
+    std::unique_ptr<GlShadows> shadows;  // made for the first scene with a shadowed light
+    ShadowOptions shadow_options;
 
     ~State() {
         if (context != EGL_NO_CONTEXT) {
             ibl.reset();
+            shadows.reset();
             free_meshes();
             if (pbr_program) glDeleteProgram(pbr_program);
             if (id_program) glDeleteProgram(id_program);
@@ -330,8 +371,17 @@ struct GlReferenceRenderer::State {
         }
     }
 
-    void ensure_pbr_program(int light_count, bool environment) {
-        if (pbr_program != 0 && pbr_light_count == light_count && pbr_environment == environment) return;
+    void ensure_pbr_program(const Scene& scene, bool environment) {
+        const int light_count = int(scene.lights.size());
+        bool light_types = false, any_shadows = false;
+        for (const Light& light : scene.lights) {
+            light_types = light_types || light.type != LightType::point;
+            any_shadows = any_shadows || light.shadows;
+        }
+        const std::string shadow_declarations = any_shadows ? shadow_fragment_declarations(scene) : "";
+        if (pbr_program != 0 && pbr_light_count == light_count && pbr_environment == environment &&
+            pbr_light_types == light_types && pbr_shadows == shadow_declarations)
+            return;
         if (pbr_program) glDeleteProgram(pbr_program);
         pbr_program = 0;
         std::string body = kFragmentShaderBody;
@@ -340,13 +390,18 @@ struct GlReferenceRenderer::State {
         };
         splice("IBL_DECLARATIONS", environment ? kIblFragmentDeclarations : "");
         splice("IBL_AMBIENT", environment ? kIblAmbient : "");
+        splice("SHADOW_DECLARATIONS", shadow_declarations.c_str());
         const std::string fragment = "#version 330 core\n#define LIGHT_COUNT " + std::to_string(light_count) +
+                                     "\n#define LIGHT_TYPES " + (light_types ? "1" : "0") +
+                                     "\n#define SHADOWS " + (any_shadows ? "1" : "0") +
                                      "\n#define LIGHT_ARRAY_SIZE " + std::to_string(light_count > 0 ? light_count : 1) +
                                      "\n#define ENVIRONMENT " + (environment ? "1" : "0") + "\n" + body;
         pbr_program = link_program(kVertexShader, fragment, "PBR fragment shader");
         pbr_uniforms = Uniforms(pbr_program);
         pbr_light_count = light_count;
         pbr_environment = environment;
+        pbr_light_types = light_types;
+        pbr_shadows = shadow_declarations;
         check_gl("building the PBR program");
     }
 
@@ -403,13 +458,14 @@ struct GlReferenceRenderer::State {
         if (scene.msaa == kMsaaSamples) ensure_msaa_framebuffer(scene.width, scene.height);
         const bool environment = scene.environment.present();
         if (environment) prepare_environment(scene);
-        ensure_pbr_program(int(scene.lights.size()), environment);
+        ensure_pbr_program(scene, environment);
         upload_meshes(scene);
     }
 
     // One frame into the FBO: clear, then every object; with `multisampled`, into the
     // 4x FBO and then resolved into the single-sample one. No glFinish here.
     void draw(const Scene& scene, bool object_ids, bool multisampled, WindowOrigin origin = WindowOrigin::bottom_left) {
+        const bool shadowed = !object_ids && render_shadow_maps(scene);
         glBindFramebuffer(GL_FRAMEBUFFER, multisampled ? msaa_fbo : fbo);
         glViewport(0, 0, scene.width, scene.height);
         if (object_ids)
@@ -434,14 +490,27 @@ struct GlReferenceRenderer::State {
         const float rotation = glm::radians(scene.environment.rotation_degrees);  // as shade::ibl_lighting
         const float cos_rotation = std::cos(rotation), sin_rotation = std::sin(rotation);
         if (environment) ibl->bind_for_shading(pbr_program, scene.environment.intensity, cos_rotation, sin_rotation);
+        if (shadowed) shadows->bind_for_shading(pbr_program);
         if (!object_ids && !scene.lights.empty()) {
-            std::vector<glm::vec3> positions, colors;
+            std::vector<glm::vec3> positions, colors, directions;
+            std::vector<GLint> types;
+            std::vector<float> cos_inner, cos_outer;
             for (const Light& light : scene.lights) {
                 positions.push_back(light.position);
                 colors.push_back(light.color);
+                directions.push_back(light.direction);
+                types.push_back(light.type == LightType::directional ? 1 : light.type == LightType::spot ? 2 : 0);
+                // As shade::spot_cone_factor: the cosines in float on the CPU.
+                cos_inner.push_back(std::cos(glm::radians(light.inner_cone_degrees)));
+                cos_outer.push_back(std::cos(glm::radians(light.outer_cone_degrees)));
             }
-            glUniform3fv(u.light_positions, GLsizei(positions.size()), glm::value_ptr(positions[0]));
-            glUniform3fv(u.light_colors, GLsizei(colors.size()), glm::value_ptr(colors[0]));
+            const GLsizei n = GLsizei(positions.size());
+            glUniform3fv(u.light_positions, n, glm::value_ptr(positions[0]));
+            glUniform3fv(u.light_colors, n, glm::value_ptr(colors[0]));
+            glUniform1iv(u.light_types, n, types.data());
+            glUniform3fv(u.light_directions, n, glm::value_ptr(directions[0]));
+            glUniform1fv(u.light_cos_inner, n, cos_inner.data());
+            glUniform1fv(u.light_cos_outer, n, cos_outer.data());
         }
         for (std::size_t i = 0; i < scene.objects.size(); ++i) {
             const Object& object = scene.objects[i];
@@ -466,6 +535,22 @@ struct GlReferenceRenderer::State {
         if (environment && scene.environment.background)
             ibl->draw_background(view, projection, scene.environment.intensity, cos_rotation, sin_rotation);
         if (multisampled) resolve(scene.width, scene.height);
+    }
+
+    // The shadowed lights' depth maps (gl_shadows.cpp), drawn afresh as Tessera draws them every
+    // frame. False when no light casts shadows.
+    bool render_shadow_maps(const Scene& scene) {
+        bool any = false;
+        for (const Light& light : scene.lights) any = any || light.shadows;
+        if (!any) return false;
+        if (!shadows) shadows = std::make_unique<GlShadows>();
+        shadows->render_maps(scene, shadow_options, [&](std::size_t o) {
+            const GpuMesh& mesh = meshes[scene.objects[o].mesh];
+            glBindVertexArray(mesh.vao);
+            glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+        });
+        glBindVertexArray(0);
+        return true;
     }
 
     // Material::double_sided = false culls back faces, by Tessera's (and glTF's) rule: front is
@@ -574,6 +659,15 @@ std::vector<glm::vec2> GlReferenceRenderer::msaa_sample_positions() {
 }
 
 void GlReferenceRenderer::set_ibl_options(const IblOptions& options) { state_->ibl_options = options; }
+
+void GlReferenceRenderer::set_shadow_options(const ShadowOptions& options) { state_->shadow_options = options; }
+
+std::vector<ShadowMapReadback> GlReferenceRenderer::read_shadow_maps(const Scene& scene) {
+    state_->prepare(scene);
+    if (!state_->render_shadow_maps(scene)) return {};
+    glFinish();
+    return state_->shadows->read_maps();
+}
 
 IblMapsReadback GlReferenceRenderer::read_ibl_maps(const Scene& scene) {
     if (!scene.environment.present()) fail("read_ibl_maps: the scene has no environment");

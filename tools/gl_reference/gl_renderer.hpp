@@ -1,5 +1,5 @@
 // A peer renderer: the same scene drawn by OpenGL 3.3 core with the ORIGINAL GLSL of
-// docs/reference/pbr_lighting.md, and for a scene with an [environment] the image-based
+// docs/reference/pbr_lighting.md (with shadows: LearnOpenGL's shadow chapters, gl_shadows.cpp), and for a scene with an [environment] the image-based
 // lighting chapters' GLSL and GL set-up of docs/reference/ibl_lighting.md (gl_ibl.cpp), on
 // Mesa's llvmpipe (a CPU driver) through an EGL surfaceless context. It checks Tessera's pixels against an independent
 // implementation and gives a CPU rasterizer to race. Not part of the pipeline:
@@ -37,6 +37,25 @@ struct IblOptions {
     bool operator==(const IblOptions&) const = default;
 };
 
+// How the peer makes shadow maps (gl_shadows.hpp). The default does what Tessera does: float
+// depth. The flag restores the chapters' own unsized GL_DEPTH_COMPONENT (the driver's choice).
+struct ShadowOptions {
+    bool chapter_depth_format = false;
+    bool operator==(const ShadowOptions&) const = default;
+};
+
+// One shadowed light's depth map as the peer drew it (glGetTexImage): faces (1, or 6 in GL's
+// cube order +X −X +Y −Y +Z −Z) of size² floats, rows from the BOTTOM (GL's t = 0 first; Tessera's
+// ShadowMap keeps row 0 at the top). Window depth for a directional light, distance / far plane
+// for spot and point lights; 1 where nothing was drawn.
+struct ShadowMapReadback {
+    int light = 0;  // index into scene.lights
+    int size = 0, faces = 1;
+    int depth_bits = 0;           // GL_TEXTURE_DEPTH_SIZE of the texture the driver made
+    bool float_depth = false;     // GL_TEXTURE_DEPTH_TYPE is GL_FLOAT (else normalized integers)
+    std::vector<float> depth;  // [face][row from the bottom][column]
+};
+
 // One level of a cube map read back: 6 faces (+X, −X, +Y, −Y, +Z, −Z) of size² RGB floats,
 // rows t = 0 first (GL's texel addressing, as Tessera's CubeMap::texel(level, face, x, y)).
 struct CubeLevelReadback {
@@ -63,6 +82,10 @@ struct IblMapsReadback {
 // A scene with an environment: its maps are made by the chapter's capture passes on first
 // use and kept while the image file and the IblOptions stay the same; a frame draws the
 // objects with the IBL pbr.fs and then, with environment.background, the chapter's skybox.
+// Directional and spot lights follow docs/reference/pbr_lighting.md ("Other light types"); a
+// light with shadows first draws its depth map each frame (gl_shadows.hpp: the shadow
+// chapters' depth passes with Tessera's light cameras) and scales its term of Lo by the
+// chapters' 1 − shadow.
 // Every EGL/GL failure throws std::runtime_error naming what failed, including a
 // driver whose GL_MAX_SAMPLES is below 4 when a scene asks for 4× MSAA.
 class GlReferenceRenderer {
@@ -98,6 +121,11 @@ public:
     // The IBL maps for scene.environment (computed now unless the last scene's image and
     // options were the same); throws if the scene has no environment.
     IblMapsReadback read_ibl_maps(const Scene& scene);
+
+    // Options for the shadow maps of later renders.
+    void set_shadow_options(const ShadowOptions& options);
+    // The shadow maps of scene's shadowed lights, drawn now by the chapters' depth passes.
+    std::vector<ShadowMapReadback> read_shadow_maps(const Scene& scene);
 
     // GLSL `expression` (of a float x, e.g. "asin(x)") evaluated by the driver's fragment
     // shader for each of `inputs`: how far its built-ins are from exact (explains differences).

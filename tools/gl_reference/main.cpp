@@ -28,6 +28,7 @@ struct Options {
     int warmup = 3;
     bool json = false;
     tessera::gl_reference::IblOptions ibl;  // the defaults: Tessera's documented departures
+    tessera::gl_reference::ShadowOptions shadows;  // the default: float depth maps, as Tessera's
 };
 
 struct Summary {
@@ -63,6 +64,7 @@ int run(const Options& opt) {
 
     tessera::gl_reference::GlReferenceRenderer renderer;
     renderer.set_ibl_options(opt.ibl);
+    renderer.set_shadow_options(opt.shadows);
     if (!opt.output.empty()) tessera::write_image(renderer.render(scene), opt.output);
 
     const char* lp_env = std::getenv("LP_NUM_THREADS");
@@ -110,6 +112,8 @@ int main(int argc, char** argv) {
                  "Environment maps in the chapter's RGB16F/RG16F (default RGB32F/RG32F, as Tessera keeps them)");
     app.add_flag("--ibl-irradiance-lod-from-derivatives", opt.ibl.irradiance_lod_from_derivatives,
                  "The chapter's texture() in the irradiance convolution (default textureLod(..., 4.0), as Tessera)");
+    app.add_flag("--shadow-chapter-depth-format", opt.shadows.chapter_depth_format,
+                 "Shadow maps in the chapters' unsized GL_DEPTH_COMPONENT (default GL_DEPTH_COMPONENT32F, as Tessera's float)");
     app.footer("Threads: llvmpipe reads LP_NUM_THREADS from the environment. With 4x MSAA a timed frame\n"
                "includes the resolve blit (clear + draws + resolve + glFinish).");
     try {
