@@ -390,3 +390,11 @@ TEST_CASE("crosscheck shadows: the chapters' own unsized GL_DEPTH_COMPONENT maps
     }
     gl->set_shadow_options({});
 }
+
+TEST_CASE("crosscheck shadows: the three scenes with 4x MSAA agree with llvmpipe's 4x MSAA") {
+    for (const char* file : {"shadows_point.toml", "shadows_directional.toml", "shadows_spot.toml"}) {
+        Scene scene = shadow_scene(file);
+        scene.msaa = 4;
+        check_shadow_scene(scene, std::filesystem::path(file).stem().string() + "_msaa", kShadows);
+    }
+}
