@@ -21,6 +21,7 @@
 #include "agreement.hpp"
 #include "gl_renderer.hpp"
 #include "render/shadow_pass.hpp"
+#include "shade/pbr_reference.hpp"
 #include "shade/shadow_maps.hpp"
 #include "simd/isa.hpp"
 #include "tessera/renderer.hpp"
@@ -331,6 +332,57 @@ constexpr ImageThresholds kLightTypes{0.995, 0.9999, 0.9999, 2, 2};
 constexpr ImageThresholds kShadows{0.995, 0.999, 0.9998, 2, 2};
 
 }  // namespace
+
+// The peer takes Tessera's light cameras; what they promise (src/shade/shadow_maps.hpp) is
+// checked here instead: every surface point the camera sees lies inside its lights' maps (a
+// spot's where its cone lights it, within the far plane for spot and point lights), and every
+// caster's vertex within the directional map's depth range (a caster clipped away would cast
+// nothing). No OpenGL needed.
+TEST_CASE("crosscheck shadows: every visible point lies in its lights' maps and every caster in the depth range") {
+    for (const char* file : {"shadows_point.toml", "shadows_directional.toml", "shadows_spot.toml"}) {
+        CAPTURE(std::string(file));
+        const Scene scene = shadow_scene(file);
+        RenderSettings settings;
+        settings.aovs.insert(Aov::position);
+        settings.aovs.insert(Aov::object_id);
+        Renderer renderer(settings);
+        const RenderedImage image = renderer.render(scene);
+        const shade::SceneBounds bounds = shade::scene_bounds(scene);
+        std::size_t points = 0, outside = 0, casters_clipped = 0;
+        for (const Light& light : scene.lights) {
+            if (!light.shadows) continue;
+            shade::ShadowMap map;
+            shade::plan_shadow_map(scene, bounds, light, map);
+            for (std::size_t p = 0; p < image.aov.object_id.size(); ++p) {
+                if (image.aov.object_id[p] == 0) continue;
+                const glm::vec3 pos(image.aov.position[3 * p], image.aov.position[3 * p + 1], image.aov.position[3 * p + 2]);
+                ++points;
+                if (light.type == LightType::point) {
+                    outside += glm::length(pos - light.position) > map.far_plane;
+                    continue;
+                }
+                if (light.type == LightType::spot && !(shade::spot_cone_factor(light, glm::normalize(pos - light.position)) > 0.0f))
+                    continue;
+                const glm::vec4 clip = map.view_projection[0] * glm::vec4(pos, 1.0f);
+                const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+                const bool inside = clip.w > 0.0f && std::fabs(ndc.x) <= 1.0f && std::fabs(ndc.y) <= 1.0f &&
+                                    std::fabs(ndc.z) <= 1.0f;
+                outside += !inside;
+            }
+            if (light.type != LightType::directional) continue;
+            for (const Object& object : scene.objects)
+                for (const glm::vec3& v : scene.meshes[object.mesh].positions) {
+                    const glm::vec4 clip = map.view_projection[0] * (object.model * glm::vec4(v, 1.0f));
+                    casters_clipped += std::fabs(clip.z / clip.w) > 1.0f;
+                }
+        }
+        MESSAGE(std::string(file) << ": " << outside << " of " << points << " visible (point, light) pairs outside the map, "
+                     << casters_clipped << " caster vertices outside the depth range");
+        CHECK(points > 0);
+        CHECK(outside == 0);
+        CHECK(casters_clipped == 0);
+    }
+}
 
 TEST_CASE("crosscheck shadows: llvmpipe's point-light cube maps are Tessera's but where casters' edges cross texels") {
     check_maps("shadows_point.toml");
