@@ -460,3 +460,13 @@ TEST_CASE("crosscheck shadows: the three scenes with 4x MSAA agree with llvmpipe
 TEST_CASE("crosscheck shadows: scenes/shadows.toml (a sun, a spot and a point light casting shadows) agrees with llvmpipe") {
     check_shadow_scene(load_scene_file(test::scene_path("shadows.toml")), "shadows", kShadows);
 }
+
+TEST_CASE("crosscheck shadows: point shadows with ranges (light culling, the disk scaled by the range) agree with llvmpipe") {
+    // Each range ends on the floor, so light culling keeps a light in some tiles and not in others,
+    // and the cube's far plane and the disk's are the range.
+    Scene scene = shadow_scene("shadows_point.toml");
+    const float ranges[] = {10.0f, 8.0f, 8.5f};
+    REQUIRE(scene.lights.size() == 3);
+    for (std::size_t l = 0; l < 3; ++l) scene.lights[l].range = ranges[l];
+    check_shadow_scene(scene, "shadows_point_ranges", kShadows);
+}

@@ -51,7 +51,8 @@ void main() {
 // environment, IBL_DECLARATIONS and IBL_AMBIENT splice in the IBL chapter's pbr.fs (gl_ibl.cpp):
 // its ambient term in place of 0.03·albedo·ao. With LIGHT_TYPES (a directional or spot light in
 // the scene) the loop's first lines take each light's type as pbr_lighting.md's "Other light
-// types" says; with SHADOWS, SHADOW_DECLARATIONS splices in the shadow chapters' functions
+// types" says; with RANGES (a light with Light::range) a light adds nothing past its range, as
+// Tessera's light culling cuts it; with SHADOWS, SHADOW_DECLARATIONS splices in the shadow chapters' functions
 // (gl_shadows.cpp) and each light's term of Lo is scaled by its 1 − shadow. Without either the
 // shader is the reference's, line for line.
 constexpr const char* kFragmentShaderBody = R"(
@@ -59,6 +60,9 @@ in vec2 TexCoords; in vec3 WorldPos; in vec3 Normal;
 out vec4 FragColor;
 uniform vec3  albedo;  uniform float metallic;  uniform float roughness;  uniform float ao;
 uniform vec3  lightPositions[LIGHT_ARRAY_SIZE];  uniform vec3 lightColors[LIGHT_ARRAY_SIZE];  uniform vec3 camPos;
+#if RANGES
+uniform float lightRanges[LIGHT_ARRAY_SIZE];  // 0: unlimited
+#endif
 #if LIGHT_TYPES
 uniform int lightTypes[LIGHT_ARRAY_SIZE];  // 0 point, 1 directional, 2 spot
 uniform vec3 lightDirections[LIGHT_ARRAY_SIZE];  // where the light travels, unit
@@ -89,6 +93,13 @@ void main() {
     vec3 F0 = mix(vec3(0.04), albedo, metallic);
     vec3 Lo = vec3(0.0);
     for (int i = 0; i < LIGHT_COUNT; ++i) {
+#if RANGES
+        // Light::range: nothing past it (shade::light_reaches, (dx² + dy²) + dz² <= range²).
+        vec3 toLight = lightPositions[i] - WorldPos;
+        if (lightRanges[i] > 0.0 &&
+            (toLight.x * toLight.x + toLight.y * toLight.y) + toLight.z * toLight.z > lightRanges[i] * lightRanges[i])
+            continue;
+#endif
 #if LIGHT_TYPES
         vec3 L; vec3 radiance;
         if (lightTypes[i] == 1) {  // directional: L = -direction, no attenuation
@@ -177,7 +188,7 @@ struct Uniforms {
     GLint projection = -1, view = -1, model = -1, normal_matrix = -1;
     GLint albedo = -1, metallic = -1, roughness = -1, ao = -1, cam_pos = -1;
     GLint light_positions = -1, light_colors = -1, object_id = -1;
-    GLint light_types = -1, light_directions = -1, light_cos_inner = -1, light_cos_outer = -1;
+    GLint light_types = -1, light_directions = -1, light_cos_inner = -1, light_cos_outer = -1, light_ranges = -1;
 
     explicit Uniforms(GLuint program) {
         projection = glGetUniformLocation(program, "projection");
@@ -196,6 +207,7 @@ struct Uniforms {
         light_directions = glGetUniformLocation(program, "lightDirections");
         light_cos_inner = glGetUniformLocation(program, "lightCosInner");
         light_cos_outer = glGetUniformLocation(program, "lightCosOuter");
+        light_ranges = glGetUniformLocation(program, "lightRanges");
     }
     Uniforms() = default;
 };
@@ -223,6 +235,7 @@ struct GlReferenceRenderer::State {
     int pbr_light_count = -1;  // the LIGHT_COUNT pbr_program was built for
     bool pbr_environment = false;  // and whether with the IBL ambient
     bool pbr_light_types = false;  // with LIGHT_TYPES
+    bool pbr_ranges = false;       // with RANGES
     std::string pbr_shadows;       // the SHADOW_DECLARATIONS it was built with
     Uniforms pbr_uniforms;
     GLuint id_program = 0;
@@ -373,14 +386,15 @@ struct GlReferenceRenderer::State {
 
     void ensure_pbr_program(const Scene& scene, bool environment) {
         const int light_count = int(scene.lights.size());
-        bool light_types = false, any_shadows = false;
+        bool light_types = false, any_shadows = false, ranges = false;
         for (const Light& light : scene.lights) {
             light_types = light_types || light.type != LightType::point;
+            ranges = ranges || (light.type != LightType::directional && light.range > 0.0f);
             any_shadows = any_shadows || light.shadows;
         }
         const std::string shadow_declarations = any_shadows ? shadow_fragment_declarations(scene) : "";
         if (pbr_program != 0 && pbr_light_count == light_count && pbr_environment == environment &&
-            pbr_light_types == light_types && pbr_shadows == shadow_declarations)
+            pbr_light_types == light_types && pbr_ranges == ranges && pbr_shadows == shadow_declarations)
             return;
         if (pbr_program) glDeleteProgram(pbr_program);
         pbr_program = 0;
@@ -393,6 +407,7 @@ struct GlReferenceRenderer::State {
         splice("SHADOW_DECLARATIONS", shadow_declarations.c_str());
         const std::string fragment = "#version 330 core\n#define LIGHT_COUNT " + std::to_string(light_count) +
                                      "\n#define LIGHT_TYPES " + (light_types ? "1" : "0") +
+                                     "\n#define RANGES " + (ranges ? "1" : "0") +
                                      "\n#define SHADOWS " + (any_shadows ? "1" : "0") +
                                      "\n#define LIGHT_ARRAY_SIZE " + std::to_string(light_count > 0 ? light_count : 1) +
                                      "\n#define ENVIRONMENT " + (environment ? "1" : "0") + "\n" + body;
@@ -401,6 +416,7 @@ struct GlReferenceRenderer::State {
         pbr_light_count = light_count;
         pbr_environment = environment;
         pbr_light_types = light_types;
+        pbr_ranges = ranges;
         pbr_shadows = shadow_declarations;
         check_gl("building the PBR program");
     }
@@ -494,7 +510,7 @@ struct GlReferenceRenderer::State {
         if (!object_ids && !scene.lights.empty()) {
             std::vector<glm::vec3> positions, colors, directions;
             std::vector<GLint> types;
-            std::vector<float> cos_inner, cos_outer;
+            std::vector<float> cos_inner, cos_outer, ranges;
             for (const Light& light : scene.lights) {
                 positions.push_back(light.position);
                 colors.push_back(light.color);
@@ -503,6 +519,7 @@ struct GlReferenceRenderer::State {
                 // As shade::spot_cone_factor: the cosines in float on the CPU.
                 cos_inner.push_back(std::cos(glm::radians(light.inner_cone_degrees)));
                 cos_outer.push_back(std::cos(glm::radians(light.outer_cone_degrees)));
+                ranges.push_back(light.type == LightType::directional ? 0.0f : light.range);
             }
             const GLsizei n = GLsizei(positions.size());
             glUniform3fv(u.light_positions, n, glm::value_ptr(positions[0]));
@@ -511,6 +528,7 @@ struct GlReferenceRenderer::State {
             glUniform3fv(u.light_directions, n, glm::value_ptr(directions[0]));
             glUniform1fv(u.light_cos_inner, n, cos_inner.data());
             glUniform1fv(u.light_cos_outer, n, cos_outer.data());
+            glUniform1fv(u.light_ranges, n, ranges.data());
         }
         for (std::size_t i = 0; i < scene.objects.size(); ++i) {
             const Object& object = scene.objects[i];
