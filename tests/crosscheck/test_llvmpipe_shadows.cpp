@@ -470,3 +470,11 @@ TEST_CASE("crosscheck shadows: point shadows with ranges (light culling, the dis
     for (std::size_t l = 0; l < 3; ++l) scene.lights[l].range = ranges[l];
     check_shadow_scene(scene, "shadows_point_ranges", kShadows);
 }
+
+TEST_CASE("crosscheck shadows: shadows_spot.toml lit by the shipped environment too agrees with llvmpipe") {
+    // The environment's ambient is not shadowed (docs/scene-format.md); the spot's term is.
+    Scene scene = shadow_scene("shadows_spot.toml");
+    scene.environment = load_scene_file(test::scene_path("spheres_environment.toml")).environment;
+    scene.environment.background = false;
+    check_shadow_scene(scene, "shadows_spot_environment", kShadows);
+}
