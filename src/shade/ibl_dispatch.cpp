@@ -58,20 +58,33 @@ void add_ibl_ambient(Isa isa, const FragmentInputs& in, const glm::vec3& cam_pos
     }
 }
 
+namespace {
+
+// The scalar reference of both background entry points: ray_of(i) is pixel i's view ray.
+template <class RayOf>
+void background_scalar(std::size_t count, RayOf ray_of, const IblLighting& ibl, float scale, const RadianceOutputs& out) {
+    for (std::size_t i = 0; i < count; ++i) {
+        glm::vec3 value = environment_background(ibl, ray_of(i));
+        if (scale != 1.0f) value = value * scale;
+        out.r[i] = value.r, out.g[i] = value.g, out.b[i] = value.b;
+    }
+}
+
+IblArrays background_arrays(const IblLighting& ibl) {
+    IblArrays arrays{};
+    arrays.intensity = ibl.intensity, arrays.cos_rotation = ibl.cos_rotation, arrays.sin_rotation = ibl.sin_rotation;
+    return arrays;
+}
+
+}  // namespace
+
 void sample_environment_background(Isa isa, std::size_t count, const float* x, const float* y, const float* z,
                                    const IblLighting& ibl, float scale, const RadianceOutputs& out) {
     simd::require_supported(isa);
-    if (isa == Isa::scalar) {
-        for (std::size_t i = 0; i < count; ++i) {
-            glm::vec3 value = environment_background(ibl, load_vec3(x, y, z, i));
-            if (scale != 1.0f) value = value * scale;
-            out.r[i] = value.r, out.g[i] = value.g, out.b[i] = value.b;
-        }
-        return;
-    }
+    if (isa == Isa::scalar)
+        return background_scalar(count, [&](std::size_t i) { return load_vec3(x, y, z, i); }, ibl, scale, out);
     const CubeArrays cube = cube_arrays(ibl.maps->background);
-    IblArrays arrays{};
-    arrays.intensity = ibl.intensity, arrays.cos_rotation = ibl.cos_rotation, arrays.sin_rotation = ibl.sin_rotation;
+    const IblArrays arrays = background_arrays(ibl);
     switch (isa) {
         case Isa::scalar: break;
         case Isa::sse4: return sample_environment_background_sse4(count, x, y, z, cube, arrays, scale, out);
@@ -83,17 +96,10 @@ void sample_environment_background(Isa isa, std::size_t count, const float* x, c
 void sample_environment_background_row(Isa isa, std::size_t count, const float* column, const BackgroundRays& rays,
                                        const IblLighting& ibl, float scale, const RadianceOutputs& out) {
     simd::require_supported(isa);
-    if (isa == Isa::scalar) {
-        for (std::size_t i = 0; i < count; ++i) {
-            glm::vec3 value = environment_background(ibl, background_ray(rays, column[i]));
-            if (scale != 1.0f) value = value * scale;
-            out.r[i] = value.r, out.g[i] = value.g, out.b[i] = value.b;
-        }
-        return;
-    }
+    if (isa == Isa::scalar)
+        return background_scalar(count, [&](std::size_t i) { return background_ray(rays, column[i]); }, ibl, scale, out);
     const CubeArrays cube = cube_arrays(ibl.maps->background);
-    IblArrays arrays{};
-    arrays.intensity = ibl.intensity, arrays.cos_rotation = ibl.cos_rotation, arrays.sin_rotation = ibl.sin_rotation;
+    const IblArrays arrays = background_arrays(ibl);
     switch (isa) {
         case Isa::scalar: break;
         case Isa::sse4: return sample_environment_background_row_sse4(count, column, rays, cube, arrays, scale, out);
