@@ -130,8 +130,8 @@ void check_renderable(const Scene& scene) {
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& light = scene.lights[l];
         if (!light.shadows) continue;
-        shadow_texels += std::uint64_t(light.type == LightType::point ? 6 : 1) *
-                         std::uint64_t(std::max(light.shadow_map_size, 0)) * std::uint64_t(std::max(light.shadow_map_size, 0));
+        const std::uint64_t side = std::uint64_t(std::max(light.shadow_map_size, 0));
+        shadow_texels += std::uint64_t(light.type == LightType::point ? 6 : 1) * side * side;
         if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize ||
             light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius)
             throw std::invalid_argument("light " + std::to_string(l) + ": shadow map size " +
