@@ -111,6 +111,9 @@ struct FrameStats {
     std::uint64_t fragments_rasterized = 0;  // pixel centres covered, over all triangles
     std::uint64_t fragments_shaded = 0;      // visible pixels, each shaded once
     std::uint64_t fragment_lights = 0;       // Σ fragments × the lights looped over for them, after light culling
+    // Lights with shadows: their maps drawn this frame, and those kept as the
+    // frame before drew them (nothing they depend on moved).
+    std::uint32_t shadow_maps_drawn = 0, shadow_maps_kept = 0;
     // Wall-clock time of the frame's three passes, one after the other.
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
     double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk

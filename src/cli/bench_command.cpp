@@ -125,10 +125,12 @@ int run_bench(const BenchCommand& cmd) {
             std::printf("%s\"%s\": %.3f", i ? ", " : "", stages[i].name, summarize(stages[i].samples).median);
         std::printf("}, \"triangles\": %llu, \"triangles_binned\": %llu, \"fragments_rasterized\": %llu, "
                     "\"fragments_shaded\": %llu, \"lights\": %zu, \"fragment_lights\": %llu, \"mfragments_per_s\": %.2f, "
-                    "\"ns_per_fragment_light\": %.3f, \"peak_rss_mib\": %.1f, \"rss_growth_mib\": %.1f}\n",
+                    "\"ns_per_fragment_light\": %.3f, \"shadow_maps_drawn\": %u, \"shadow_maps_kept\": %u, "
+                    "\"peak_rss_mib\": %.1f, \"rss_growth_mib\": %.1f}\n",
                     (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                     (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded,
-                    scene.lights.size(), (unsigned long long)s.fragment_lights, mfrag_per_s, ns_per_fragment_light, rss_peak, rss_peak - rss_after_warmup);
+                    scene.lights.size(), (unsigned long long)s.fragment_lights, mfrag_per_s, ns_per_fragment_light, s.shadow_maps_drawn, s.shadow_maps_kept, rss_peak,
+                    rss_peak - rss_after_warmup);
         return 0;
     }
     std::printf("%s: %dx%d, msaa %d, %d threads, %s kernels, tile %d, %d frames after %d warm-up\n",
@@ -146,6 +148,10 @@ int run_bench(const BenchCommand& cmd) {
                 double(s.fragment_lights) / double(std::max<std::uint64_t>(s.fragments_shaded, 1)));
     std::printf("%.1f Mfragments/s shaded; %.2f ns per fragment-light (shading step, one thread)\n", mfrag_per_s,
                 ns_per_fragment_light);
+    if (s.shadow_maps_drawn + s.shadow_maps_kept > 0)
+        std::printf("shadow maps in the last frame: %u drawn, %u kept from the frame before "
+                    "(TESSERA_NO_SHADOW_CACHE=1 draws them all)\n",
+                    s.shadow_maps_drawn, s.shadow_maps_kept);
     std::printf("peak memory %.1f MiB; growth over the timed frames %.1f MiB\n", rss_peak, rss_peak - rss_after_warmup);
     if (!cmd.trace_path.empty())
         std::printf("trace of the %d timed frames: %s (open it in Perfetto or chrome://tracing)\n", cmd.frames,

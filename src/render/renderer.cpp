@@ -371,6 +371,8 @@ const RenderedImage& Renderer::render(const Scene& given) {
         f.shadow_pass.render_maps(f.isa, scene, f.shadow_maps, f.shadow_by_light);
         const auto t2 = Clock::now();
         f.stats.shadow_ms = ms_between(shadow_start, t2);
+        f.stats.shadow_maps_drawn = std::uint32_t(f.shadow_pass.maps_drawn());
+        f.stats.shadow_maps_kept = std::uint32_t(f.shadow_pass.maps_kept());
         f.render_tiles(scene);
         const auto t3 = Clock::now();
         f.stats.vertex_ms = ms_between(t0, t1);

@@ -3,7 +3,11 @@
 #include "render/shadow_pass.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
 #include <stdexcept>
+#include <string_view>
 
 #include <tbb/parallel_for.h>
 
@@ -38,7 +42,74 @@ bool outside_view(const shade::SceneBounds& box, const glm::mat4& view_projectio
     return all_outside != 0;
 }
 
+// The cache keys (render_maps): 64-bit hashes of the bytes a depth pass reads,
+// the standard library's hash of a byte string, combined in a fixed order.
+std::uint64_t combine(std::uint64_t seed, std::uint64_t value) {
+    return seed ^ (value + 0x9e3779b97f4a7c15ull + (seed << 12) + (seed >> 4));
+}
+template <class T>
+std::uint64_t hash_bytes(const T* data, std::size_t count) {
+    return std::hash<std::string_view>{}(std::string_view(reinterpret_cast<const char*>(data), count * sizeof(T)));
+}
+template <class T>
+std::uint64_t combine_value(std::uint64_t seed, const T& value) {
+    return combine(seed, hash_bytes(&value, 1));
+}
+
+bool shadow_cache_enabled() {
+    const char* off = std::getenv("TESSERA_NO_SHADOW_CACHE");
+    return off == nullptr || std::strcmp(off, "1") != 0;
+}
+
 }  // namespace
+
+std::uint64_t ShadowPass::casters_key(const Scene& scene) {
+    // Which meshes the casters draw, and whether an alpha test reads their uvs and colours.
+    constexpr std::uint8_t kDrawn = 1, kMasked = 2;
+    std::vector<std::uint8_t> use(scene.meshes.size(), 0);
+    for (const Object& object : scene.objects) {
+        if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size()) continue;
+        if (!shade::casts_shadow(scene, object)) continue;
+        use[object.mesh] |= kDrawn;
+        if (scene.materials[object.material].alpha_mode == AlphaMode::mask) use[object.mesh] |= kMasked;
+    }
+    mesh_keys_.assign(scene.meshes.size(), 0);
+    tbb::parallel_for(std::size_t(0), scene.meshes.size(), [&](std::size_t m) {
+        if (!(use[m] & kDrawn)) return;
+        const Mesh& mesh = scene.meshes[m];
+        std::uint64_t key = combine_value(0, mesh.topology);
+        key = combine(key, hash_bytes(mesh.positions.data(), mesh.positions.size()));
+        key = combine(key, hash_bytes(mesh.indices.data(), mesh.indices.size()));
+        if (use[m] & kMasked) {
+            key = combine(key, hash_bytes(mesh.uvs.data(), mesh.uvs.size()));
+            key = combine(key, hash_bytes(mesh.uvs1.data(), mesh.uvs1.size()));
+            key = combine(key, hash_bytes(mesh.colors.data(), mesh.colors.size()));
+        }
+        mesh_keys_[m] = key;
+    });
+    next_textures_.clear();
+    std::uint64_t key = combine_value(0, scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const Object& object = scene.objects[o];
+        if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size()) continue;
+        if (!shade::casts_shadow(scene, object)) continue;
+        key = combine_value(combine_value(combine_value(key, o), object.mesh), object.model);
+        key = combine(key, mesh_keys_[object.mesh]);
+        const Material& material = scene.materials[object.material];
+        if (material.alpha_mode != AlphaMode::mask) continue;
+        const TextureSlot& slot = material.albedo_map;
+        key = combine_value(combine_value(key, material.alpha_factor), material.alpha_cutoff);
+        key = combine_value(combine_value(combine_value(key, slot.texture), slot.wrap_s), slot.wrap_t);
+        key = combine_value(combine_value(combine_value(key, slot.mag_filter), slot.min_filter), slot.uv_set);
+        key = combine_value(combine_value(key, slot.uv_transformed), slot.uv_transform);
+        if (slot.present() && std::size_t(slot.texture) < scene.textures.size()) {
+            const auto& texture = scene.textures[std::size_t(slot.texture)];
+            key = combine_value(key, static_cast<const void*>(texture.get()));
+            next_textures_.push_back(texture);
+        }
+    }
+    return key;
+}
 
 void ShadowPass::prepare(const Scene& scene) {
     bounds_ = shade::scene_bounds(scene);
@@ -203,22 +274,41 @@ void ShadowPass::render_maps(simd::Isa isa, const Scene& scene, std::vector<shad
     for (const Light& light : scene.lights) shadowed += light.shadows ? 1 : 0;
     if (maps.size() < shadowed) maps.resize(shadowed);  // never shrunk: the maps keep their memory
     by_light.assign(scene.lights.size(), nullptr);
+    maps_drawn_ = maps_kept_ = 0;
     if (shadowed == 0) return;
     prepare(scene);
+    const bool cache = shadow_cache_enabled();
+    const std::uint64_t casters = cache ? combine_value(casters_key(scene), isa) : 0;
+    if (map_keys_.size() < maps.size()) map_keys_.resize(maps.size(), 0), map_storage_.resize(maps.size(), nullptr);
     std::size_t next = 0;
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& light = scene.lights[l];
         if (!light.shadows) continue;
-        shade::ShadowMap& map = maps[next++];
+        const std::size_t slot = next++;
+        shade::ShadowMap& map = maps[slot];
         shade::plan_shadow_map(scene, bounds_, light, map);
+        by_light[l] = &map;
+        // Everything of the plan the depth pass reads (distance maps: their projection too).
+        std::uint64_t key = combine_value(combine_value(combine_value(casters, map.kind), map.size), map.faces);
+        for (int face = 0; face < map.faces; ++face) key = combine_value(key, map.view_projection[face]);
+        key = combine_value(combine_value(key, map.position), map.to_light);
+        key = combine_value(combine_value(combine_value(key, map.near_plane), map.far_plane), map.tan_half_fov);
+        key = combine_value(key, map.disk_far_plane) | 1;  // never 0, the key of nothing
+        if (cache && map_keys_[slot] == key && map_storage_[slot] == map.depth.data()) {
+            ++maps_kept_;
+            continue;
+        }
+        map_keys_[slot] = 0;  // until drawn whole
         const std::size_t face_texels = std::size_t(map.size) * map.size;
         for (int face = 0; face < map.faces; ++face) {
             render_depth(isa, scene, map.view_projection[face], map.size,
                          {map.depth.data() + face * face_texels, face_texels},
                          map.kind != shade::ShadowMapKind::planar_depth ? &map : nullptr);
         }
-        by_light[l] = &map;
+        ++maps_drawn_;
+        if (cache) map_keys_[slot] = key, map_storage_[slot] = map.depth.data();
     }
+    if (cache) held_textures_.swap(next_textures_);
 }
 
 }  // namespace tessera::render

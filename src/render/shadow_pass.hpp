@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -40,11 +41,19 @@ public:
                       std::span<float> depth, const shade::ShadowMap* distances = nullptr);
 
     // Every shadowed light's map (Light::shadows), indexed like scene.lights
-    // (null for lights without shadows); maps holds their storage.
+    // (null for lights without shadows); maps holds their storage. A map whose
+    // inputs are those it was last drawn from in `maps` (its light camera, the
+    // casters' meshes, placements and alpha tests: a still scene, or a camera
+    // moving around point and spot lights) is kept as it is, not drawn again:
+    // the same bits, as the depth pass gives the same bits for the same input.
+    // TESSERA_NO_SHADOW_CACHE=1 in the environment draws every map every frame.
     void render_maps(simd::Isa isa, const Scene& scene, std::vector<shade::ShadowMap>& maps,
                      std::vector<const shade::ShadowMap*>& by_light);
 
     std::uint64_t triangles_drawn() const { return triangles_drawn_; }
+    // Of the last render_maps: the maps drawn, and those kept from the frame before.
+    int maps_drawn() const { return maps_drawn_; }
+    int maps_kept() const { return maps_kept_; }
 
 private:
     shade::TriangleCorners corners_of(const Chunk& chunk, const raster::RasterTriangle& t) const;
@@ -62,6 +71,18 @@ private:
     raster::TileBinIndex tile_bins_;
     tbb::enumerable_thread_specific<raster::TileBuffers> tiles_;
     std::uint64_t triangles_drawn_ = 0;
+
+    // What the maps were drawn from (render_maps): a hash of every caster's
+    // input, and per slot of `maps` the hash of that and its light camera, with
+    // the storage it was drawn into (another vector's maps are not ours). The
+    // textures masked casters read are held, so that a new texture cannot
+    // take a freed one's address and pass for it.
+    std::uint64_t casters_key(const Scene& scene);
+    std::vector<std::uint64_t> mesh_keys_;
+    std::vector<std::uint64_t> map_keys_;
+    std::vector<const float*> map_storage_;
+    std::vector<std::shared_ptr<const texture::Texture>> held_textures_, next_textures_;
+    int maps_drawn_ = 0, maps_kept_ = 0;
 };
 
 }  // namespace tessera::render

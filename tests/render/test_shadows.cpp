@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -227,6 +228,58 @@ scale = 0.5
     Renderer culled({.threads = 2, .keep_radiance = true});
     Renderer uncut({.threads = 2, .keep_radiance = true, .light_culling = false});
     CHECK(culled.render(scene).radiance == uncut.render(scene).radiance);
+}
+
+// The maps kept from frame to frame (ShadowPass::render_maps): kept only while
+// nothing they depend on changed, and then the same picture as drawn anew.
+TEST_CASE("shadows: maps are kept while lights and casters stay, drawn again when one changes") {
+    Scene scene = floor_scene(std::string(kPoint) + "\n[[lights]]\n" + kDirectional + "\n[[lights]]\n" + kSpot);
+    scene.materials.push_back(scene.materials[scene.objects[1].material]);
+    scene.materials.back().alpha_mode = AlphaMode::mask;  // a second cube, alpha-tested, cut by its alpha
+    scene.objects.push_back(scene.objects[1]);
+    scene.objects.back().material = std::uint32_t(scene.materials.size() - 1);
+    scene.objects.back().model = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f, 0.5f, 0.0f)) * scene.objects[1].model;
+    Renderer renderer({.threads = 2, .keep_radiance = true});
+    // The picture a renderer with no maps kept makes of the scene as it is now.
+    const auto fresh = [&] { return Renderer({.threads = 2, .keep_radiance = true}).render(scene).radiance; };
+    const auto frame = [&](std::uint32_t drawn, std::uint32_t kept) {
+        const std::vector<float> radiance = renderer.render(scene).radiance;
+        CHECK(renderer.last_frame_stats().shadow_maps_drawn == drawn);
+        CHECK(renderer.last_frame_stats().shadow_maps_kept == kept);
+        CHECK(radiance == fresh());
+        return radiance;
+    };
+    const std::vector<float> first = frame(3, 0);
+    CHECK(frame(0, 3) == first);  // a still scene: every map kept
+    SUBCASE("the camera moves: the point and spot maps stay (the directional one is refitted, if what it sees changed)") {
+        scene.camera.position += glm::vec3(1.0f, 0.5f, -0.5f);
+        CHECK(renderer.render(scene).radiance == fresh());
+        CHECK(renderer.last_frame_stats().shadow_maps_kept >= 2);
+        CHECK(renderer.last_frame_stats().shadow_maps_drawn + renderer.last_frame_stats().shadow_maps_kept == 3);
+    }
+    SUBCASE("a caster moves") {
+        scene.objects[1].model = glm::translate(scene.objects[1].model, glm::vec3(0.4f, 0.0f, 0.0f));
+        CHECK(frame(3, 0) != first);
+    }
+    SUBCASE("a mesh's vertices change in place") {
+        Mesh& cube = scene.meshes[scene.objects[1].mesh];
+        for (glm::vec3& p : cube.positions) p.y *= 1.5f;
+        CHECK(frame(3, 0) != first);
+    }
+    SUBCASE("an alpha cutoff changes: the masked cube stops casting") {
+        scene.materials.back().alpha_cutoff = 2.0f;
+        CHECK(frame(3, 0) != first);
+    }
+    SUBCASE("a light moves") {
+        scene.lights[0].position.x += 0.5f;
+        CHECK(frame(1, 2) != first);
+    }
+    SUBCASE("TESSERA_NO_SHADOW_CACHE=1 draws every map") {
+        setenv("TESSERA_NO_SHADOW_CACHE", "1", 1);
+        const std::vector<float> again = frame(3, 0);
+        unsetenv("TESSERA_NO_SHADOW_CACHE");
+        CHECK(again == first);
+    }
 }
 
 TEST_CASE("shadows: bad map sizes and filter radii are refused with a clear error") {
