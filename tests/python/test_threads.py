@@ -52,10 +52,12 @@ def test_python_runs_while_a_frame_renders(scenes_dir):
     renderer = tessera.Renderer(threads=1)
     renderer.render(scene)  # warm up
     done = threading.Event()
-    frame = []
+    frame, span = [], []
 
     def render():
+        span.append(time.perf_counter())
         frame.append(renderer.render(scene))
+        span.append(time.perf_counter())
         done.set()
 
     thread = threading.Thread(target=render)
@@ -64,8 +66,11 @@ def test_python_runs_while_a_frame_renders(scenes_dir):
     while not done.is_set():
         stamps.append(time.perf_counter())
     thread.join()
-    render_ms = frame[0].stats["total_ms"]
-    longest_gap_ms = 1000 * max(np.diff(stamps), default=0)
-    # Holding the GIL would stop this loop for the whole frame.
-    assert render_ms > 5
-    assert longest_gap_ms < 0.5 * render_ms, (longest_gap_ms, render_ms)
+    assert frame[0].stats["total_ms"] > 5
+    # Holding the GIL would stop this loop for the whole call: no stamp in its
+    # middle half. (Not a bound on the loop's gaps: on a loaded machine the
+    # scheduler alone leaves gaps of several milliseconds.)
+    start, end = span
+    quarter = (end - start) / 4
+    inside = sum(1 for t in stamps if start + quarter < t < end - quarter)
+    assert inside > 0, (len(stamps), 1000 * (end - start))
