@@ -66,9 +66,9 @@ bool shadow_cache_enabled() {
 std::uint64_t ShadowPass::casters_key(const Scene& scene) {
     // Which meshes the casters draw, and whether an alpha test reads their uvs and colours.
     constexpr std::uint8_t kDrawn = 1, kMasked = 2;
-    std::vector<std::uint8_t> use(scene.meshes.size(), 0);
+    std::vector<std::uint8_t>& use = mesh_use_;
+    use.assign(scene.meshes.size(), 0);
     for (const Object& object : scene.objects) {
-        if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size()) continue;
         if (!shade::casts_shadow(scene, object)) continue;
         use[object.mesh] |= kDrawn;
         if (scene.materials[object.material].alpha_mode == AlphaMode::mask) use[object.mesh] |= kMasked;
@@ -91,7 +91,6 @@ std::uint64_t ShadowPass::casters_key(const Scene& scene) {
     std::uint64_t key = combine_value(0, scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const Object& object = scene.objects[o];
-        if (object.mesh >= scene.meshes.size() || object.material >= scene.materials.size()) continue;
         if (!shade::casts_shadow(scene, object)) continue;
         key = combine_value(combine_value(combine_value(key, o), object.mesh), object.model);
         key = combine(key, mesh_keys_[object.mesh]);
@@ -102,7 +101,7 @@ std::uint64_t ShadowPass::casters_key(const Scene& scene) {
         key = combine_value(combine_value(combine_value(key, slot.texture), slot.wrap_s), slot.wrap_t);
         key = combine_value(combine_value(combine_value(key, slot.mag_filter), slot.min_filter), slot.uv_set);
         key = combine_value(combine_value(key, slot.uv_transformed), slot.uv_transform);
-        if (slot.present() && std::size_t(slot.texture) < scene.textures.size()) {
+        if (slot.present()) {
             const auto& texture = scene.textures[std::size_t(slot.texture)];
             key = combine_value(key, static_cast<const void*>(texture.get()));
             next_textures_.push_back(texture);

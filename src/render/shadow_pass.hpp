@@ -78,6 +78,7 @@ private:
     // textures masked casters read are held, so that a new texture cannot
     // take a freed one's address and pass for it.
     std::uint64_t casters_key(const Scene& scene);
+    std::vector<std::uint8_t> mesh_use_;  // per mesh: drawn, and read by an alpha test
     std::vector<std::uint64_t> mesh_keys_;
     std::vector<std::uint64_t> map_keys_;
     std::vector<const float*> map_storage_;
