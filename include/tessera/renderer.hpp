@@ -114,6 +114,10 @@ struct FrameStats {
     // Lights with shadows: their maps drawn this frame, and those kept as the
     // frame before drew them (nothing they depend on moved).
     std::uint32_t shadow_maps_drawn = 0, shadow_maps_kept = 0;
+    // Point-light shadow lookups (fragments × shadowed point lights, SIMD
+    // kernels): settled by the maps' block summaries, skipped as facing away
+    // from the light (its share is 0 whatever the shadow), and with every tap taken.
+    std::uint64_t shadow_lookups_settled = 0, shadow_lookups_facing_away = 0, shadow_lookups_tapped = 0;
     // Wall-clock time of the frame's three passes, one after the other.
     double vertex_ms = 0;       // vertex shader, outcodes, viewport transform
     double triangles_ms = 0;    // the triangle pass: clip+setup, then binning, chunk by chunk

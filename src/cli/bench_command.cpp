@@ -126,10 +126,13 @@ int run_bench(const BenchCommand& cmd) {
         std::printf("}, \"triangles\": %llu, \"triangles_binned\": %llu, \"fragments_rasterized\": %llu, "
                     "\"fragments_shaded\": %llu, \"lights\": %zu, \"fragment_lights\": %llu, \"mfragments_per_s\": %.2f, "
                     "\"ns_per_fragment_light\": %.3f, \"shadow_maps_drawn\": %u, \"shadow_maps_kept\": %u, "
+                    "\"shadow_lookups_settled\": %llu, \"shadow_lookups_facing_away\": %llu, \"shadow_lookups_tapped\": %llu, "
                     "\"peak_rss_mib\": %.1f, \"rss_growth_mib\": %.1f}\n",
                     (unsigned long long)s.triangles_in, (unsigned long long)s.triangles_binned,
                     (unsigned long long)s.fragments_rasterized, (unsigned long long)s.fragments_shaded,
-                    scene.lights.size(), (unsigned long long)s.fragment_lights, mfrag_per_s, ns_per_fragment_light, s.shadow_maps_drawn, s.shadow_maps_kept, rss_peak,
+                    scene.lights.size(), (unsigned long long)s.fragment_lights, mfrag_per_s, ns_per_fragment_light, s.shadow_maps_drawn, s.shadow_maps_kept,
+                    (unsigned long long)s.shadow_lookups_settled, (unsigned long long)s.shadow_lookups_facing_away,
+                    (unsigned long long)s.shadow_lookups_tapped, rss_peak,
                     rss_peak - rss_after_warmup);
         return 0;
     }
@@ -152,6 +155,13 @@ int run_bench(const BenchCommand& cmd) {
         std::printf("shadow maps in the last frame: %u drawn, %u kept from the frame before "
                     "(TESSERA_NO_SHADOW_CACHE=1 draws them all)\n",
                     s.shadow_maps_drawn, s.shadow_maps_kept);
+    if (const std::uint64_t lookups = s.shadow_lookups_settled + s.shadow_lookups_facing_away + s.shadow_lookups_tapped;
+        lookups > 0)
+        std::printf("point-light shadow lookups %llu: %.1f%% settled by the block summaries, %.1f%% facing away, "
+                    "%.1f%% with every tap\n",
+                    (unsigned long long)lookups, 100.0 * double(s.shadow_lookups_settled) / double(lookups),
+                    100.0 * double(s.shadow_lookups_facing_away) / double(lookups),
+                    100.0 * double(s.shadow_lookups_tapped) / double(lookups));
     std::printf("peak memory %.1f MiB; growth over the timed frames %.1f MiB\n", rss_peak, rss_peak - rss_after_warmup);
     if (!cmd.trace_path.empty())
         std::printf("trace of the %d timed frames: %s (open it in Perfetto or chrome://tracing)\n", cmd.frames,

@@ -77,6 +77,7 @@ struct WorkerScratch {
     raster::RasterCounters counters;
     std::uint64_t fragments_shaded = 0;
     std::uint64_t fragment_lights = 0;
+    shade::CubeLookupStats shadow_lookups;
     std::uint64_t tile_triangles = 0;  // rasterized in the current tile (profile)
     std::uint32_t tile_light_count = 0;  // lights shaded in the current tile (profile)
     std::vector<ProfileSpan> spans;    // this worker's chunks and tiles, with RenderSettings::profile
@@ -556,7 +557,7 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
     background = image::EnvironmentBackground(scene, exposure_scale);
     for (WorkerScratch& s : scratch) s.light_culling.reserve(lights.count());  // a no-op once large enough
     const image::ClearValues clear = image::clear_values(scene.clear_color);
-    for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = s.fragment_lights = 0, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
+    for (WorkerScratch& s : scratch) s.counters = {}, s.fragments_shaded = s.fragment_lights = 0, s.shadow_lookups = {}, s.rasterize_ms = s.shade_ms = s.resolve_ms = 0;
     set_corner_lookup(scene);
 
     tbb::parallel_for(0, grid.tile_count(), [&](int tile) {
@@ -570,6 +571,9 @@ void Renderer::Frame::render_tiles(const Scene& scene) {
         stats.fragments_rasterized += s.counters.fragments;
         stats.fragments_shaded += s.fragments_shaded;
         stats.fragment_lights += s.fragment_lights;
+        stats.shadow_lookups_settled += s.shadow_lookups.settled;
+        stats.shadow_lookups_facing_away += s.shadow_lookups.facing_away;
+        stats.shadow_lookups_tapped += s.shadow_lookups.tapped;
         stats.rasterize_ms += s.rasterize_ms / threads;
         stats.shade_ms += s.shade_ms / threads;
         stats.resolve_ms += s.resolve_ms / threads;
@@ -849,7 +853,8 @@ std::size_t Renderer::Frame::shade_tile(const Scene& scene, std::size_t count, W
         if (lights.shadowed_count() > 0) {  // each shadowed light's visibility, scaling its share of Lo
             const std::size_t stride = shade::padded_count(count);
             if (s.visibility.size() < stride * lights.shadowed_count()) s.visibility.resize(stride * lights.shadowed_count());
-            shade::shadow_visibility_planes(isa, inputs, lights, s.visibility.data(), stride);
+            // The shadow AOV reads every fragment's visibility; the picture alone does not.
+            s.shadow_lookups += shade::shadow_visibility_planes(isa, inputs, lights, s.visibility.data(), stride, !image.aov.empty());
             direct.visibility = s.visibility.data(), direct.visibility_stride = stride;
             direct.visibility_planes = lights.shadowed_count();
         }

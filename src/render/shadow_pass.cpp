@@ -304,6 +304,7 @@ void ShadowPass::render_maps(simd::Isa isa, const Scene& scene, std::vector<shad
                          {map.depth.data() + face * face_texels, face_texels},
                          map.kind != shade::ShadowMapKind::planar_depth ? &map : nullptr);
         }
+        shade::summarize_cube_blocks(map);  // cube maps: what lets the lookups skip their taps
         ++maps_drawn_;
         if (cache) map_keys_[slot] = key, map_storage_[slot] = map.depth.data();
     }

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <tbb/parallel_for.h>
 
 namespace tessera::shade {
 
@@ -155,6 +156,59 @@ void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light&
     map.depth.resize(std::size_t(map.faces) * map.size * map.size);  // every texel written by the depth pass
 }
 
+void summarize_cube_blocks(ShadowMap& map) {
+    constexpr int kMaxShadowBlocksPerSide = (kMaxShadowMapSize + kShadowBlock - 1) / kShadowBlock;
+    if (map.kind != ShadowMapKind::cube_distance || map.size <= 0 || map.size > kMaxShadowMapSize ||
+        map.depth.size() != std::size_t(map.faces) * map.size * map.size) {
+        map.block_min.clear(), map.block_max.clear(), map.blocks_per_side = 0;
+        return;
+    }
+    const int size = map.size, n = (size + kShadowBlock - 1) / kShadowBlock;
+    const std::size_t per_face = std::size_t(n) * std::size_t(n), count = std::size_t(map.faces) * per_face;
+    map.blocks_per_side = n;
+    map.block_min.resize(count), map.block_max.resize(count);
+    // Each block's own least and greatest texel first (NaN: −inf, +inf), then the windows in place.
+    tbb::parallel_for(0, map.faces * n, [&](int face_row) {
+        const int face = face_row / n, by = face_row % n;
+        float* lo = map.block_min.data() + std::size_t(face) * per_face + std::size_t(by) * n;
+        float* hi = map.block_max.data() + std::size_t(face) * per_face + std::size_t(by) * n;
+        std::fill_n(lo, n, INFINITY), std::fill_n(hi, n, -INFINITY);
+        bool nan[kMaxShadowBlocksPerSide] = {};
+        for (int y = by * kShadowBlock; y < std::min(size, (by + 1) * kShadowBlock); ++y) {
+            const float* row = map.depth.data() + (std::size_t(face) * size + std::size_t(y)) * size;
+            for (int bx = 0; bx < n; ++bx) {
+                float mn = lo[bx], mx = hi[bx];
+                bool any_nan = false;
+                for (int x = bx * kShadowBlock; x < std::min(size, (bx + 1) * kShadowBlock); ++x) {
+                    const float v = row[x];
+                    mn = v < mn ? v : mn, mx = v > mx ? v : mx, any_nan |= v != v;
+                }
+                lo[bx] = mn, hi[bx] = mx, nan[bx] = nan[bx] || any_nan;
+            }
+        }
+        for (int bx = 0; bx < n; ++bx)
+            if (nan[bx]) lo[bx] = -INFINITY, hi[bx] = INFINITY;
+    });
+    // Window (bx, by) = blocks bx .. bx + kShadowWindow − 1 by by .. by + kShadowWindow − 1:
+    // along rows, then along columns, each in place in increasing index (reading
+    // only entries after the one written).
+    tbb::parallel_for(0, map.faces, [&](int face) {
+        float* lo = map.block_min.data() + std::size_t(face) * per_face;
+        float* hi = map.block_max.data() + std::size_t(face) * per_face;
+        const auto widen = [&](std::size_t step, int along_x) {
+            for (int by = 0; by < n; ++by)
+                for (int bx = 0; bx < n; ++bx) {
+                    const std::size_t i = std::size_t(by) * n + std::size_t(bx);
+                    const int at = along_x ? bx : by;
+                    for (int k = 1; k < kShadowWindow && at + k < n; ++k)
+                        lo[i] = std::min(lo[i], lo[i + k * step]), hi[i] = std::max(hi[i], hi[i + k * step]);
+                }
+        };
+        widen(1, 1);
+        widen(std::size_t(n), 0);
+    });
+}
+
 float distance_from_window_depth(const ShadowMap& map, float d, int column, int row) {
     const float n = map.near_plane, f = map.far_plane, size = float(map.size);
     const float ndc_x = ((float(column) + 0.5f) / size * 2.0f - 1.0f) * map.tan_half_fov;
@@ -254,29 +308,39 @@ float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const 
 
 // Defined in shadow_kernels_simd.cpp, once per ISA: 1 − cube_shadow of
 // fragments [0, count) rounded up to whole vectors.
-#define TESSERA_DECLARE_SHADOW_ENTRIES(suffix)                                                                  \
-    void cube_visibility_##suffix(const CubeMapView& map, const float* x, const float* y, const float* z,     \
-                                  std::size_t count, const glm::vec3& view_pos, float* out);
+#define TESSERA_DECLARE_SHADOW_ENTRIES(suffix) \
+    CubeLookupStats cube_visibility_##suffix(const CubeMapView& map, const CubeLookupInputs& in, float* out);
 TESSERA_DECLARE_SHADOW_ENTRIES(sse4)
 TESSERA_DECLARE_SHADOW_ENTRIES(avx2)
 TESSERA_DECLARE_SHADOW_ENTRIES(avx512)
 #undef TESSERA_DECLARE_SHADOW_ENTRIES
 
-void shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
-                              std::size_t stride) {
+CubeLookupStats shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
+                                         std::size_t stride, bool every_visibility) {
     simd::require_supported(isa);
     const std::size_t padded = padded_count(in.count);
+    CubeLookupStats stats;
+    thread_local std::vector<std::uint32_t> pending;  // the kernels' list, kept from call to call
     for (std::size_t slot = 0; slot < lights.shadowed_count(); ++slot) {
         const ShadowMap& map = *lights.shadow_maps[slot];
         float* plane = planes + slot * stride;
         if (map.kind == ShadowMapKind::cube_distance && isa != Isa::scalar) {
+            const bool summarized = map.blocks_per_side > 0 &&
+                                    map.block_min.size() == std::size_t(map.faces) * map.blocks_per_side * map.blocks_per_side;
             const CubeMapView view{map.depth.data(), map.size, map.filter_radius, map.position.x, map.position.y,
-                                   map.position.z, map.far_plane, map.disk_far_plane};
+                                   map.position.z, map.far_plane, map.disk_far_plane,
+                                   summarized ? map.block_min.data() : nullptr, summarized ? map.block_max.data() : nullptr,
+                                   map.blocks_per_side};
+            if (pending.size() < kCubeLookupLists * padded) pending.resize(kCubeLookupLists * padded);
+            const bool skip = !every_visibility;
+            const CubeLookupInputs fragments{in.world_x, in.world_y, in.world_z, skip ? in.normal_x : nullptr,
+                                             skip ? in.normal_y : nullptr, skip ? in.normal_z : nullptr,
+                                             in.count, lights.cam_pos, pending.data(), padded};
             switch (isa) {
             case Isa::scalar: break;
-            case Isa::sse4: cube_visibility_sse4(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
-            case Isa::avx2: cube_visibility_avx2(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
-            case Isa::avx512: cube_visibility_avx512(view, in.world_x, in.world_y, in.world_z, in.count, lights.cam_pos, plane); break;
+            case Isa::sse4: stats += cube_visibility_sse4(view, fragments, plane); break;
+            case Isa::avx2: stats += cube_visibility_avx2(view, fragments, plane); break;
+            case Isa::avx512: stats += cube_visibility_avx512(view, fragments, plane); break;
             }
             for (std::size_t i = in.count; i < padded; ++i) plane[i] = 1.0f;
             continue;
@@ -286,6 +350,7 @@ void shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLi
                                          {in.normal_x[i], in.normal_y[i], in.normal_z[i]}, lights.cam_pos);
         for (std::size_t i = in.count; i < padded; ++i) plane[i] = 1.0f;
     }
+    return stats;
 }
 
 }  // namespace tessera::shade

@@ -75,11 +75,30 @@ struct ShadowMap {
     float tan_half_fov = 1.0f;    // of the perspective faces
     // faces × size² texels, face after face, row 0 of each at the top; 1 = nothing drawn.
     std::vector<float> depth;
+    // Cube maps: the least and greatest texel of each window of kShadowWindow²
+    // blocks of kShadowBlock² texels (summarize_cube_blocks), for the SIMD lookups to
+    // settle a fragment whose 20 taps all fall in one window without taking
+    // them. Empty: none (the taps are always taken). Stale if depth changes
+    // without summarize_cube_blocks after it.
+    std::vector<float> block_min, block_max;
+    int blocks_per_side = 0;
 
     float texel(int face, int column, int row) const {
         return depth[(std::size_t(face) * size + std::size_t(row)) * size + std::size_t(column)];
     }
 };
+
+// The side of the blocks that ShadowMap::block_min and block_max summarize,
+// and of their windows in blocks: 12 texels, wider than the point chapter's
+// disk of 20 taps spans on a 1024² face 15 units from its light (7 texels).
+inline constexpr int kShadowBlock = 4;
+inline constexpr int kShadowWindow = 3;
+
+// Fills a cube map's block_min, block_max and blocks_per_side from its depth:
+// window (bx, by) of a face covers blocks bx .. bx + kShadowWindow − 1 and
+// by .. by + kShadowWindow − 1 (those that exist), rows as depth stores them. A window holding a NaN texel gets
+// (−inf, +inf), which settles nothing. Other kinds of map: left empty.
+void summarize_cube_blocks(ShadowMap& map);
 
 // The light camera(s) for `light` in `scene` (bounds: scene_bounds(scene)), and
 // the map's size; depth is sized (its values left as they were) for the depth pass to fill.
@@ -98,20 +117,55 @@ float distance_from_window_depth(const ShadowMap& map, float d, int column, int 
 float shadow_visibility(const ShadowMap& map, const glm::vec3& world_pos, const glm::vec3& normal,
                         const glm::vec3& cam_pos);
 
+// How the cube lookups of shadow_visibility_planes went, in fragments × lights
+// (for tests and benchmarks).
+struct CubeLookupStats {
+    std::size_t settled = 0;      // by the block summaries: the taps' result, without taking them
+    std::size_t facing_away = 0;  // not looked up: the light's share of Lo is 0 whatever the visibility
+    std::size_t tapped = 0;       // every tap taken
+    CubeLookupStats& operator+=(const CubeLookupStats& o) {
+        settled += o.settled, facing_away += o.facing_away, tapped += o.tapped;
+        return *this;
+    }
+};
+
 // shadow_visibility of in's fragments for every shadowed light of `lights`:
 // slot s's (ShadingLights::shadow_maps[s]) at planes[s · stride + i], for
 // i < padded_count(in.count) (1 in the padding). stride >= padded_count(in.count).
 // With a SIMD ISA, cube maps are looked up a vector of fragments at a time
 // (shadow_kernels_simd.cpp: the same operations, so the same bits; 2D maps
-// take the scalar code for every ISA).
-void shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
-                              std::size_t stride);
+// take the scalar code for every ISA), settling what the block summaries
+// can without the taps. every_visibility false: where a fragment faces away
+// from a point light (its share of Lo is 0 whatever the visibility), the
+// plane may hold any value in [0, 1] instead (the shadow AOV asks for true).
+CubeLookupStats shadow_visibility_planes(Isa isa, const FragmentInputs& in, const ShadingLights& lights, float* planes,
+                                         std::size_t stride, bool every_visibility = true);
 
 // What the cube kernels read of a cube map (plain values: no std::vector in per-ISA code).
 struct CubeMapView {
     const float* depth;
     int size, filter_radius;
     float position_x, position_y, position_z, far_plane, disk_far_plane;
+    const float* block_min;  // null: no summaries
+    const float* block_max;
+    int blocks_per_side;
+};
+
+// The fragments the cube kernels look up: positions, normals (null: none
+// skipped as facing away), and room for kCubeLookupLists lists of
+// pending_capacity >= count indices each (one per face, and one more).
+inline constexpr std::size_t kCubeLookupLists = 7;
+struct CubeLookupInputs {
+    const float* x;
+    const float* y;
+    const float* z;
+    const float* normal_x;
+    const float* normal_y;
+    const float* normal_z;
+    std::size_t count;
+    glm::vec3 view_pos;
+    std::uint32_t* pending;
+    std::size_t pending_capacity;
 };
 
 // The 20 offsets of the point chapter's gridSamplingDisk.

@@ -20,6 +20,16 @@ namespace {  // each ISA's copy its own, as kernel_prelude.hpp asks
 #endif
 }
 
+[[gnu::always_inline]] inline unsigned lane_bits(const xsimd::batch_bool<float, TESSERA_SIMD_ARCH>& b) {
+#if XSIMD_WITH_AVX512F
+    return unsigned(b.data);
+#elif XSIMD_WITH_AVX2
+    return unsigned(_mm256_movemask_ps(b));
+#else
+    return unsigned(_mm_movemask_ps(b));
+#endif
+}
+
 // Two vectors of doubles (lanes 0..n/2-1, n/2..n-1) rounded to one of floats:
 // a conversion between batches of different lane counts.
 [[gnu::always_inline]] inline xsimd::batch<float, TESSERA_SIMD_ARCH> round_to_float(

@@ -375,6 +375,33 @@ TEST_CASE("shadows: the shadow AOV is the mean visibility of the lights that cas
     CHECK(std::all_of(plain.aov.shadow.begin(), plain.aov.shadow.end(), [](float v) { return v == 1.0f; }));
 }
 
+TEST_CASE("shadows: point lights' lookups skipped where the surface faces away leave the picture as it was") {
+    // Two shadowed point lights, one over the floor and one under it: the
+    // floor faces away from the second, whose lookups there are skipped unless
+    // the shadow AOV asks for every visibility.
+    Scene scene = floor_scene(kPoint, true, 200);
+    Light other = scene.lights[0];
+    other.position = {-2.0f, -1.5f, 1.0f};
+    scene.lights[0].position = {3.0f, 2.5f, -0.5f};
+    scene.lights.push_back(other);
+    Renderer picture_only(RenderSettings{.threads = 2});
+    const RenderedImage picture = picture_only.render(scene);
+    const FrameStats skipped = picture_only.last_frame_stats();
+    RenderSettings with_aov{.threads = 2};
+    with_aov.aovs.insert(Aov::shadow);
+    Renderer every(with_aov);
+    const RenderedImage& all = every.render(scene);
+    const FrameStats tapped = every.last_frame_stats();
+    CHECK(picture.display == all.display);
+    CHECK(picture.radiance == all.radiance);
+    if (simd::best_supported_isa() != simd::Isa::scalar) {
+        CHECK(skipped.shadow_lookups_facing_away > skipped.fragments_shaded / 2);
+        CHECK(tapped.shadow_lookups_facing_away == 0);
+        CHECK(skipped.shadow_lookups_settled > 1000);
+        CHECK(tapped.shadow_lookups_settled + tapped.shadow_lookups_tapped == 2 * tapped.fragments_shaded);
+    }
+}
+
 TEST_CASE("shadows: a masked caster casts where its alpha test keeps it, a blended one not at all") {
     const auto visibility_under_cube = [](const std::string& cube_material) {
         const Scene scene = parse_scene(

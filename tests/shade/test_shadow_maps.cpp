@@ -173,3 +173,88 @@ TEST_CASE("cube shadow kernels: every ISA gives the scalar lookup's bits") {
         }
     }
 }
+
+TEST_CASE("cube shadow kernels: the block summaries and the fragments facing away skip taps, not bits") {
+    // A room 5 units from the light on every side (distance / far = 0.5) and a
+    // square occluder 2 units away in the middle of each face; fragments on a
+    // sphere 4.9 units out, face by face in rows as a tile would list them:
+    // lit, shadowed, and partly shadowed near the occluders' edges.
+    ShadowMap map;
+    map.kind = ShadowMapKind::cube_distance;
+    map.size = 128, map.faces = 6, map.filter_radius = 1;
+    map.position = {0.25f, -0.5f, 0.75f};
+    map.far_plane = 10.0f, map.disk_far_plane = 30.0f;
+    map.depth.assign(6 * 128 * 128, 0.5f);
+    for (int face = 0; face < 6; ++face)
+        for (int row = 40; row < 88; ++row)
+            for (int column = 40 + 4 * face; column < 88; ++column)
+                map.depth[(std::size_t(face) * 128 + std::size_t(row)) * 128 + std::size_t(column)] = 0.2f;
+    map.depth[(std::size_t(2) * 128 + 10) * 128 + 10] = NAN;  // a NaN texel settles nothing near it
+    summarize_cube_blocks(map);
+    REQUIRE(map.blocks_per_side == 128 / kShadowBlock);
+
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<float> x, y, z, nx, ny, nz;
+    for (int face = 0; face < 6; ++face)
+        for (int j = 0; j < 96; ++j)
+            for (int i = 0; i < 96; ++i) {
+                const float s = (float(i) + 0.5f) / 48.0f - 1.0f, t = (float(j) + 0.5f) / 48.0f - 1.0f;
+                const glm::vec3 axes[6] = {{1, -t, -s}, {-1, -t, s}, {s, 1, t}, {s, -1, -t}, {s, -t, 1}, {-s, -t, -1}};
+                const glm::vec3 p = map.position + glm::normalize(axes[face]) * 4.9f;
+                x.push_back(p.x), y.push_back(p.y), z.push_back(p.z);
+                nx.push_back(unit(rng)), ny.push_back(unit(rng)), nz.push_back(unit(rng));
+            }
+    const std::size_t count = x.size();
+    for (std::vector<float>* v : {&x, &y, &z, &nx, &ny, &nz}) v->resize(padded_count(count), 0.0f);
+    std::vector<Light> light_list(1);
+    ShadingLights lights;
+    lights.assign({0.0f, 3.0f, 8.0f}, light_list);
+    const ShadowMap* by_light[] = {&map};
+    lights.assign_shadows(by_light);
+    const FragmentInputs in{count, x.data(), y.data(), z.data(), nx.data(), ny.data(), nz.data()};
+    for (const int radius : {1, 2}) {
+        map.filter_radius = radius;
+        std::vector<float> reference(x.size(), -1.0f);
+        shadow_visibility_planes(Isa::scalar, in, lights, reference.data(), x.size());
+        std::size_t lit = 0, dark = 0;
+        for (std::size_t i = 0; i < count; ++i) lit += reference[i] == 1.0f, dark += reference[i] == 0.0f;
+        CHECK(lit > count / 4);
+        CHECK(dark > count / 20);
+        CHECK(count - lit - dark > count / 50);  // partly shadowed
+        for (const Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+            if (!isa_supported(isa)) continue;
+            CAPTURE(isa_name(isa));
+            CAPTURE(radius);
+            // Every visibility asked for: the summaries settle most, the bits are the taps'.
+            std::vector<float> out(x.size(), -1.0f);
+            const CubeLookupStats every = shadow_visibility_planes(isa, in, lights, out.data(), x.size());
+            std::size_t different = 0;
+            for (std::size_t i = 0; i < x.size(); ++i) different += std::memcmp(&out[i], &reference[i], sizeof(float)) != 0;
+            CHECK(different == 0);
+            CHECK(every.settled + every.tapped == count);
+            CHECK(every.facing_away == 0);
+            CHECK(every.settled > count / 2);
+            CHECK(every.tapped > count / 50);
+            // The picture only: a fragment facing away from the light may hold
+            // another value, in [0, 1]; every other one the taps' bits.
+            std::fill(out.begin(), out.end(), -1.0f);
+            const CubeLookupStats picture = shadow_visibility_planes(isa, in, lights, out.data(), x.size(), false);
+            CHECK(picture.settled + picture.tapped + picture.facing_away == count);
+            CHECK(picture.facing_away > count / 3);
+            std::size_t wrong = 0;
+            for (std::size_t i = 0; i < count; ++i) {
+                if (std::memcmp(&out[i], &reference[i], sizeof(float)) == 0) continue;
+                const glm::vec3 to_light = map.position - glm::vec3(x[i], y[i], z[i]);
+                const bool away = glm::dot(glm::vec3(nx[i], ny[i], nz[i]), to_light) < 0.0f;
+                wrong += !(away && out[i] >= 0.0f && out[i] <= 1.0f);
+            }
+            CHECK(wrong == 0);
+        }
+    }
+    // Summaries of another depth than the map's would be wrong, so a map
+    // without them (a test's, a caller's) takes every tap.
+    map.block_min.clear();
+    std::vector<float> out(x.size());
+    CHECK(shadow_visibility_planes(simd::best_supported_isa(), in, lights, out.data(), x.size()).settled == 0);
+}
