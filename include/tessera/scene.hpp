@@ -145,7 +145,8 @@ inline constexpr int kDefaultShadowMapSize = 1024;  // the chapters' SHADOW_WIDT
 inline constexpr int kMaxShadowFilterRadius = 8;
 inline constexpr int kDefaultShadowFilterRadius = 1;
 // What a frame's shadow maps may take together (4 bytes per texel, six faces
-// for a point light): the renderer refuses more.
+// for a point light, whose cube also keeps 2 floats per 4×4 texels of
+// summaries): the renderer refuses more.
 inline constexpr std::uint64_t kMaxShadowMapBytes = std::uint64_t(2) << 30;
 
 // A light (docs/reference/pbr_lighting.md). Point and spot lights fall off with the

@@ -127,12 +127,13 @@ void check_renderable(const Scene& scene) {
     }
     if (scene.msaa != 1 && scene.msaa != raster::kMsaaSamples)
         throw std::invalid_argument("msaa must be 1 or 4, not " + std::to_string(scene.msaa));
-    std::uint64_t shadow_texels = 0;  // the frame's shadow maps, 4 bytes each
+    std::uint64_t shadow_texels = 0;  // the frame's shadow maps and cube maps' summaries, 4 bytes each
     for (std::size_t l = 0; l < scene.lights.size(); ++l) {
         const Light& light = scene.lights[l];
         if (!light.shadows) continue;
         const std::uint64_t side = std::uint64_t(std::max(light.shadow_map_size, 0));
-        shadow_texels += std::uint64_t(light.type == LightType::point ? 6 : 1) * side * side;
+        const std::uint64_t blocks = (side + shade::kShadowBlock - 1) / shade::kShadowBlock;
+        shadow_texels += light.type == LightType::point ? 6 * (side * side + 2 * blocks * blocks) : side * side;
         if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize ||
             light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius)
             throw std::invalid_argument("light " + std::to_string(l) + ": shadow map size " +

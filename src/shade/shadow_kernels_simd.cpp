@@ -159,9 +159,10 @@ Mask settle_by_blocks(const CubeMapView& map, const DiskOnFace& disk, const Batc
     const Batch bx = xsimd::floor(column_lo * per_block), by = xsimd::floor(row_lo * per_block);
     const Mask fits = disk.clear_of_edges & (xsimd::floor(column_hi * per_block) <= bx + last_block) &
                       (xsimd::floor(row_hi * per_block) <= by + last_block) & (current_depth == current_depth);
-    const Batch blocks(float(map.blocks_per_side));
-    const Batch window = xsimd::select(fits, (disk.face * blocks + by) * blocks + bx, zero);
-    const IntBatch index = xsimd::batch_cast<std::int32_t>(window);
+    // (face · blocks + by) · blocks + bx in int32: up to 6 · 2048², beyond float's exact integers.
+    const IntBatch blocks(map.blocks_per_side);
+    const auto block = [&](const Batch& v) { return xsimd::batch_cast<std::int32_t>(xsimd::select(fits, v, zero)); };
+    const IntBatch index = (block(disk.face) * blocks + block(by)) * blocks + block(bx);
     const Batch least = simd::hardware_gather(map.block_min, index), greatest = simd::hardware_gather(map.block_max, index);
     const Batch d = current_depth - bias, far_plane(map.far_plane);
     const Mask lit = fits & !(d > least * far_plane), shadowed = fits & (d > greatest * far_plane);
