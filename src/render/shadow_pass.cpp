@@ -133,7 +133,9 @@ void ShadowPass::prepare(const Scene& scene) {
 }
 
 void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4& view_projection, int size,
-                              std::span<float> depth, const shade::ShadowMap* distances) {
+                              std::span<float> depth, const shade::ShadowMap* distances, shade::ShadowMap* summaries,
+                              int face) {
+    static_assert(kShadowTileSize % shade::kShadowBlock == 0, "tiles hold whole summary blocks");
     if (depth.size() != std::size_t(size) * size) throw std::invalid_argument("shadow map storage of the wrong size");
     // The casters this view can see, in scene order.
     objects_.clear();
@@ -144,6 +146,7 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
         tbb::parallel_for(std::size_t(0), std::size_t(size), [&](std::size_t row) {
             std::fill_n(depth.data() + row * std::size_t(size), size, 1.0f);
         });
+        if (summaries != nullptr) shade::summarize_cube_rect(*summaries, face, 0, 0, size, size);
         return;
     }
 
@@ -217,6 +220,7 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
         const raster::TileRect rect = grid_.rect(tile);
         if (entries.empty()) {
             for (int y = rect.y0; y < rect.y1; ++y) std::fill_n(depth.data() + std::size_t(y) * size + rect.x0, rect.width(), 1.0f);
+            if (summaries != nullptr) shade::summarize_cube_rect(*summaries, face, rect.x0, rect.y0, rect.x1, rect.y1);
             return;
         }
         raster::TileBuffers& buffers = tiles_.local();
@@ -247,6 +251,7 @@ void ShadowPass::render_depth(simd::Isa isa, const Scene& scene, const glm::mat4
             for (int x = 0; x < rect.width(); ++x)
                 to[x] = from[x] < 1.0f ? shade::distance_from_window_depth(*distances, from[x], rect.x0 + x, y) : 1.0f;
         }
+        if (summaries != nullptr) shade::summarize_cube_rect(*summaries, face, rect.x0, rect.y0, rect.x1, rect.y1);
     });
     for (std::size_t c = 0; c < chunk_count_; ++c) triangles_drawn_ += chunks_[c].assembled.triangles.size();
 }
@@ -299,12 +304,14 @@ void ShadowPass::render_maps(simd::Isa isa, const Scene& scene, std::vector<shad
         }
         map_keys_[slot] = 0;  // until drawn whole
         const std::size_t face_texels = std::size_t(map.size) * map.size;
+        shade::prepare_cube_summaries(map);  // cube maps: what lets the lookups skip their taps
+        shade::ShadowMap* summaries = map.blocks_per_side > 0 ? &map : nullptr;
         for (int face = 0; face < map.faces; ++face) {
             render_depth(isa, scene, map.view_projection[face], map.size,
                          {map.depth.data() + face * face_texels, face_texels},
-                         map.kind != shade::ShadowMapKind::planar_depth ? &map : nullptr);
+                         map.kind != shade::ShadowMapKind::planar_depth ? &map : nullptr, summaries, face);
         }
-        shade::summarize_cube_blocks(map);  // cube maps: what lets the lookups skip their taps
+        if (summaries != nullptr) shade::finish_cube_summaries(map);
         ++maps_drawn_;
         if (cache) map_keys_[slot] = key, map_storage_[slot] = map.depth.data();
     }

@@ -37,8 +37,11 @@ public:
     // facing (the chapter's depth pass culls nothing); a masked material's
     // fragments take its alpha test (shade/alpha_mask.hpp), as in the frame. With `distances`, each
     // covered texel is stored as shade::distance_from_window_depth(*distances, ...).
+    // With `summaries` (a cube map prepared by shade::prepare_cube_summaries,
+    // `depth` its face `face`), each tile's blocks are summarized once written.
     void render_depth(simd::Isa isa, const Scene& scene, const glm::mat4& view_projection, int size,
-                      std::span<float> depth, const shade::ShadowMap* distances = nullptr);
+                      std::span<float> depth, const shade::ShadowMap* distances = nullptr,
+                      shade::ShadowMap* summaries = nullptr, int face = 0);
 
     // Every shadowed light's map (Light::shadows), indexed like scene.lights
     // (null for lights without shadows); maps holds their storage. A map whose

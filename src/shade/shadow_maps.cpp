@@ -156,39 +156,55 @@ void plan_shadow_map(const Scene& scene, const SceneBounds& bounds, const Light&
     map.depth.resize(std::size_t(map.faces) * map.size * map.size);  // every texel written by the depth pass
 }
 
-void summarize_cube_blocks(ShadowMap& map) {
-    constexpr int kMaxShadowBlocksPerSide = (kMaxShadowMapSize + kShadowBlock - 1) / kShadowBlock;
+void prepare_cube_summaries(ShadowMap& map) {
     if (map.kind != ShadowMapKind::cube_distance || map.size <= 0 || map.size > kMaxShadowMapSize ||
         map.depth.size() != std::size_t(map.faces) * map.size * map.size) {
         map.block_min.clear(), map.block_max.clear(), map.blocks_per_side = 0;
         return;
     }
-    const int size = map.size, n = (size + kShadowBlock - 1) / kShadowBlock;
-    const std::size_t per_face = std::size_t(n) * std::size_t(n), count = std::size_t(map.faces) * per_face;
+    const int n = (map.size + kShadowBlock - 1) / kShadowBlock;
     map.blocks_per_side = n;
-    map.block_min.resize(count), map.block_max.resize(count);
-    // Each block's own least and greatest texel first (NaN: −inf, +inf), then the windows in place.
-    tbb::parallel_for(0, map.faces * n, [&](int face_row) {
-        const int face = face_row / n, by = face_row % n;
-        float* lo = map.block_min.data() + std::size_t(face) * per_face + std::size_t(by) * n;
-        float* hi = map.block_max.data() + std::size_t(face) * per_face + std::size_t(by) * n;
-        std::fill_n(lo, n, INFINITY), std::fill_n(hi, n, -INFINITY);
-        bool nan[kMaxShadowBlocksPerSide] = {};
-        for (int y = by * kShadowBlock; y < std::min(size, (by + 1) * kShadowBlock); ++y) {
-            const float* row = map.depth.data() + (std::size_t(face) * size + std::size_t(y)) * size;
-            for (int bx = 0; bx < n; ++bx) {
-                float mn = lo[bx], mx = hi[bx];
-                bool any_nan = false;
-                for (int x = bx * kShadowBlock; x < std::min(size, (bx + 1) * kShadowBlock); ++x) {
-                    const float v = row[x];
-                    mn = v < mn ? v : mn, mx = v > mx ? v : mx, any_nan |= v != v;
-                }
-                lo[bx] = mn, hi[bx] = mx, nan[bx] = nan[bx] || any_nan;
-            }
+    map.block_min.resize(std::size_t(map.faces) * n * n), map.block_max.resize(map.block_min.size());
+}
+
+void summarize_cube_rect(ShadowMap& map, int face, int x0, int y0, int x1, int y1) {
+    if (map.blocks_per_side == 0) return;
+    const int size = map.size, n = map.blocks_per_side;
+    const auto row = [&](int y) { return map.depth.data() + (std::size_t(face) * size + std::size_t(y)) * size; };
+    thread_local std::vector<float> column_min, column_max;
+    column_min.resize(std::size_t(size)), column_max.resize(std::size_t(size));
+    for (int b0 = y0; b0 < y1; b0 += kShadowBlock) {
+        const int b1 = std::min(y1, b0 + kShadowBlock);
+        float* lo = map.block_min.data() + (std::size_t(face) * n + std::size_t(b0 / kShadowBlock)) * n;
+        float* hi = map.block_max.data() + (std::size_t(face) * n + std::size_t(b0 / kShadowBlock)) * n;
+        int nan = 0;
+        for (int y = b0; y < b1; ++y)
+            for (int x = x0; x < x1; ++x) nan |= int(row(y)[x] != row(y)[x]);
+        // Down the rows, then across each block (NaN: a block of −inf, +inf).
+        std::copy(row(b0) + x0, row(b0) + x1, column_min.data() + x0);
+        std::copy(row(b0) + x0, row(b0) + x1, column_max.data() + x0);
+        for (int y = b0 + 1; y < b1; ++y) {
+            const float* r = row(y);
+            for (int x = x0; x < x1; ++x)
+                column_min[x] = std::min(column_min[x], r[x]), column_max[x] = std::max(column_max[x], r[x]);
         }
-        for (int bx = 0; bx < n; ++bx)
-            if (nan[bx]) lo[bx] = -INFINITY, hi[bx] = INFINITY;
-    });
+        for (int bx = x0 / kShadowBlock; bx * kShadowBlock < x1; ++bx) {
+            float mn = INFINITY, mx = -INFINITY;
+            bool any_nan = false;
+            for (int x = bx * kShadowBlock; x < std::min(x1, (bx + 1) * kShadowBlock); ++x) {
+                if (nan != 0)
+                    for (int y = b0; y < b1; ++y) any_nan |= row(y)[x] != row(y)[x];
+                mn = std::min(mn, column_min[x]), mx = std::max(mx, column_max[x]);
+            }
+            lo[bx] = any_nan ? -INFINITY : mn, hi[bx] = any_nan ? INFINITY : mx;
+        }
+    }
+}
+
+void finish_cube_summaries(ShadowMap& map) {
+    if (map.blocks_per_side == 0) return;
+    const int n = map.blocks_per_side;
+    const std::size_t per_face = std::size_t(n) * std::size_t(n);
     // Window (bx, by) = blocks bx .. bx + kShadowWindow − 1 by by .. by + kShadowWindow − 1:
     // along rows, then along columns, each in place in increasing index (reading
     // only entries after the one written).
@@ -207,6 +223,16 @@ void summarize_cube_blocks(ShadowMap& map) {
         widen(1, 1);
         widen(std::size_t(n), 0);
     });
+}
+
+void summarize_cube_blocks(ShadowMap& map) {
+    prepare_cube_summaries(map);
+    if (map.blocks_per_side == 0) return;
+    tbb::parallel_for(0, map.faces * map.blocks_per_side, [&](int face_row) {
+        const int face = face_row / map.blocks_per_side, y0 = (face_row % map.blocks_per_side) * kShadowBlock;
+        summarize_cube_rect(map, face, 0, y0, map.size, std::min(map.size, y0 + kShadowBlock));
+    });
+    finish_cube_summaries(map);
 }
 
 float distance_from_window_depth(const ShadowMap& map, float d, int column, int row) {

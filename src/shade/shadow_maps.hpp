@@ -96,9 +96,19 @@ inline constexpr int kShadowWindow = 3;
 
 // Fills a cube map's block_min, block_max and blocks_per_side from its depth:
 // window (bx, by) of a face covers blocks bx .. bx + kShadowWindow − 1 and
-// by .. by + kShadowWindow − 1 (those that exist), rows as depth stores them. A window holding a NaN texel gets
-// (−inf, +inf), which settles nothing. Other kinds of map: left empty.
+// by .. by + kShadowWindow − 1 (those that exist), rows as depth stores them.
+// A window holding a NaN texel gets (−inf, +inf), which settles nothing.
+// Other kinds of map: left empty.
 void summarize_cube_blocks(ShadowMap& map);
+// The same in the steps the depth pass takes, tile by tile while the texels
+// are in cache: prepare_cube_summaries sizes the arrays (empty for other kinds
+// of map); summarize_cube_rect summarizes the blocks of a face's texel rect
+// [x0, x1) × [y0, y1), x0 and y0 multiples of kShadowBlock, x1 and y1 too or
+// the map's side, once its texels are final; finish_cube_summaries, after
+// every block, widens them into windows.
+void prepare_cube_summaries(ShadowMap& map);
+void summarize_cube_rect(ShadowMap& map, int face, int x0, int y0, int x1, int y1);
+void finish_cube_summaries(ShadowMap& map);
 
 // The light camera(s) for `light` in `scene` (bounds: scene_bounds(scene)), and
 // the map's size; depth is sized (its values left as they were) for the depth pass to fill.

@@ -375,6 +375,24 @@ TEST_CASE("shadows: the shadow AOV is the mean visibility of the lights that cas
     CHECK(std::all_of(plain.aov.shadow.begin(), plain.aov.shadow.end(), [](float v) { return v == 1.0f; }));
 }
 
+TEST_CASE("shadows: the depth pass summarizes a cube map tile by tile as the whole map would be") {
+    // 200 texels a side: tiles and blocks cut short at the edges; the faces
+    // looking up see no caster (the pass's empty path).
+    Scene scene = floor_scene(kPoint);
+    scene.lights[0].shadow_map_size = 200;
+    Maps m = render_maps(scene);
+    REQUIRE(m.maps.size() == 1);
+    const shade::ShadowMap& drawn = m.maps[0];
+    REQUIRE(drawn.blocks_per_side == 50);
+    shade::ShadowMap whole = drawn;
+    whole.block_min.assign(whole.block_min.size(), 0.0f), whole.block_max.assign(whole.block_max.size(), 0.0f);
+    shade::summarize_cube_blocks(whole);
+    CHECK(whole.block_min == drawn.block_min);
+    CHECK(whole.block_max == drawn.block_max);
+    CHECK(std::count(drawn.block_min.begin(), drawn.block_min.end(), 1.0f) > 0);  // nothing seen
+    CHECK(std::count_if(drawn.block_min.begin(), drawn.block_min.end(), [](float v) { return v < 1.0f; }) > 0);
+}
+
 TEST_CASE("shadows: point lights' lookups skipped where the surface faces away leave the picture as it was") {
     // Two shadowed point lights, one over the floor and one under it: the
     // floor faces away from the second, whose lookups there are skipped unless
