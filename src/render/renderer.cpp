@@ -132,7 +132,7 @@ void check_renderable(const Scene& scene) {
         const Light& light = scene.lights[l];
         if (!light.shadows) continue;
         const std::uint64_t side = std::uint64_t(std::max(light.shadow_map_size, 0));
-        const std::uint64_t blocks = (side + shade::kShadowBlock - 1) / shade::kShadowBlock;
+        const std::uint64_t blocks = std::uint64_t(shade::summary_blocks_per_side(light.shadow_map_size));
         shadow_texels += light.type == LightType::point ? 6 * (side * side + 2 * blocks * blocks) : side * side;
         if (light.shadow_map_size < kMinShadowMapSize || light.shadow_map_size > kMaxShadowMapSize ||
             light.shadow_filter_radius < 0 || light.shadow_filter_radius > kMaxShadowFilterRadius)

@@ -162,7 +162,7 @@ void prepare_cube_summaries(ShadowMap& map) {
         map.block_min.clear(), map.block_max.clear(), map.blocks_per_side = 0;
         return;
     }
-    const int n = (map.size + kShadowBlock - 1) / kShadowBlock;
+    const int n = summary_blocks_per_side(map.size);
     map.blocks_per_side = n;
     map.block_min.resize(std::size_t(map.faces) * n * n), map.block_max.resize(map.block_min.size());
 }
@@ -211,7 +211,7 @@ void finish_cube_summaries(ShadowMap& map) {
     tbb::parallel_for(0, map.faces, [&](int face) {
         float* lo = map.block_min.data() + std::size_t(face) * per_face;
         float* hi = map.block_max.data() + std::size_t(face) * per_face;
-        const auto widen = [&](std::size_t step, int along_x) {
+        const auto widen = [&](std::size_t step, bool along_x) {
             for (int by = 0; by < n; ++by)
                 for (int bx = 0; bx < n; ++bx) {
                     const std::size_t i = std::size_t(by) * n + std::size_t(bx);
@@ -220,8 +220,8 @@ void finish_cube_summaries(ShadowMap& map) {
                         lo[i] = std::min(lo[i], lo[i + k * step]), hi[i] = std::max(hi[i], hi[i + k * step]);
                 }
         };
-        widen(1, 1);
-        widen(std::size_t(n), 0);
+        widen(1, true);
+        widen(std::size_t(n), false);
     });
 }
 

@@ -33,6 +33,7 @@
 //    would hide casters nearer than that).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -93,6 +94,9 @@ struct ShadowMap {
 // disk of 20 taps spans on a 1024² face 15 units from its light (7 texels).
 inline constexpr int kShadowBlock = 4;
 inline constexpr int kShadowWindow = 3;
+// ShadowMap::blocks_per_side of a cube of `size` texels a side (its summaries
+// take 2 × 6 × that² floats).
+inline int summary_blocks_per_side(int size) { return (std::max(size, 0) + kShadowBlock - 1) / kShadowBlock; }
 
 // Fills a cube map's block_min, block_max and blocks_per_side from its depth:
 // window (bx, by) of a face covers blocks bx .. bx + kShadowWindow − 1 and
