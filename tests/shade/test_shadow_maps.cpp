@@ -28,6 +28,24 @@ ShadowMap flat_directional_map(int size, float depth, int filter_radius = 1) {
     return map;
 }
 
+// The lights of a cube-kernel test: one light shadowed by `map` (the kernels
+// read the light's position from the map), the camera at (0, 3, 8).
+ShadingLights one_shadowed_light(const ShadowMap& map) {
+    const std::vector<Light> light_list(1);
+    ShadingLights lights;
+    lights.assign({0.0f, 3.0f, 8.0f}, light_list);
+    const ShadowMap* by_light[] = {&map};
+    lights.assign_shadows(by_light);
+    return lights;
+}
+
+// How many floats of `a` differ from `b`'s in their bits.
+std::size_t different_bits(const std::vector<float>& a, const std::vector<float>& b) {
+    std::size_t different = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) different += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+    return different;
+}
+
 const glm::vec3 kFacingLight{0, 0, 1};
 const glm::vec3 kCamera{0, 0, 5};
 
@@ -148,11 +166,7 @@ TEST_CASE("cube shadow kernels: every ISA gives the scalar lookup's bits") {
     x[5] = map.position.x, y[5] = map.position.y, z[5] = map.position.z;  // at the light: no direction
     x[6] = NAN;
     x[7] = map.position.x + 2.0f, y[7] = map.position.y + 2.0f, z[7] = map.position.z;  // on a face edge
-    std::vector<Light> light_list(1);
-    ShadingLights lights;
-    lights.assign({0.0f, 3.0f, 8.0f}, light_list);
-    const ShadowMap* by_light[] = {&map};
-    lights.assign_shadows(by_light);
+    const ShadingLights lights = one_shadowed_light(map);
     const FragmentInputs in{count, x.data(), y.data(), z.data(), n.data(), n.data(), n.data()};
     for (const int radius : {0, 1, 3}) {
         map.filter_radius = radius;
@@ -167,9 +181,7 @@ TEST_CASE("cube shadow kernels: every ISA gives the scalar lookup's bits") {
             CAPTURE(radius);
             std::vector<float> out(x.size(), -1.0f);
             shadow_visibility_planes(isa, in, lights, out.data(), x.size());
-            std::size_t different = 0;
-            for (std::size_t i = 0; i < x.size(); ++i) different += std::memcmp(&out[i], &reference[i], sizeof(float)) != 0;
-            CHECK(different == 0);
+            CHECK(different_bits(out, reference) == 0);
         }
     }
 }
@@ -207,11 +219,7 @@ TEST_CASE("cube shadow kernels: the block summaries and the fragments facing awa
             }
     const std::size_t count = x.size();
     for (std::vector<float>* v : {&x, &y, &z, &nx, &ny, &nz}) v->resize(padded_count(count), 0.0f);
-    std::vector<Light> light_list(1);
-    ShadingLights lights;
-    lights.assign({0.0f, 3.0f, 8.0f}, light_list);
-    const ShadowMap* by_light[] = {&map};
-    lights.assign_shadows(by_light);
+    const ShadingLights lights = one_shadowed_light(map);
     const FragmentInputs in{count, x.data(), y.data(), z.data(), nx.data(), ny.data(), nz.data()};
     for (const int radius : {1, 2}) {
         map.filter_radius = radius;
@@ -229,9 +237,7 @@ TEST_CASE("cube shadow kernels: the block summaries and the fragments facing awa
             // Every visibility asked for: the summaries settle most, the bits are the taps'.
             std::vector<float> out(x.size(), -1.0f);
             const CubeLookupStats every = shadow_visibility_planes(isa, in, lights, out.data(), x.size());
-            std::size_t different = 0;
-            for (std::size_t i = 0; i < x.size(); ++i) different += std::memcmp(&out[i], &reference[i], sizeof(float)) != 0;
-            CHECK(different == 0);
+            CHECK(different_bits(out, reference) == 0);
             CHECK(every.settled + every.tapped == count);
             CHECK(every.facing_away == 0);
             CHECK(every.settled > count / 2);
