@@ -177,23 +177,23 @@ void summarize_cube_rect(ShadowMap& map, int face, int x0, int y0, int x1, int y
         const int b1 = std::min(y1, b0 + kShadowBlock);
         float* lo = map.block_min.data() + (std::size_t(face) * n + std::size_t(b0 / kShadowBlock)) * n;
         float* hi = map.block_max.data() + (std::size_t(face) * n + std::size_t(b0 / kShadowBlock)) * n;
-        int nan = 0;
-        for (int y = b0; y < b1; ++y)
-            for (int x = x0; x < x1; ++x) nan |= int(row(y)[x] != row(y)[x]);
-        // Down the rows, then across each block (NaN: a block of −inf, +inf).
+        // Down the rows, then across each block. The column's least texel is
+        // NaN once any of its texels is (b != b), so that a block holding a NaN
+        // becomes (−inf, +inf).
         std::copy(row(b0) + x0, row(b0) + x1, column_min.data() + x0);
         std::copy(row(b0) + x0, row(b0) + x1, column_max.data() + x0);
         for (int y = b0 + 1; y < b1; ++y) {
             const float* r = row(y);
-            for (int x = x0; x < x1; ++x)
-                column_min[x] = std::min(column_min[x], r[x]), column_max[x] = std::max(column_max[x], r[x]);
+            for (int x = x0; x < x1; ++x) {
+                const float a = column_min[x], b = r[x];
+                column_min[x] = b < a || b != b ? b : a, column_max[x] = std::max(column_max[x], b);
+            }
         }
         for (int bx = x0 / kShadowBlock; bx * kShadowBlock < x1; ++bx) {
             float mn = INFINITY, mx = -INFINITY;
             bool any_nan = false;
             for (int x = bx * kShadowBlock; x < std::min(x1, (bx + 1) * kShadowBlock); ++x) {
-                if (nan != 0)
-                    for (int y = b0; y < b1; ++y) any_nan |= row(y)[x] != row(y)[x];
+                any_nan |= column_min[x] != column_min[x];
                 mn = std::min(mn, column_min[x]), mx = std::max(mx, column_max[x]);
             }
             lo[bx] = any_nan ? -INFINITY : mn, hi[bx] = any_nan ? INFINITY : mx;
