@@ -375,6 +375,15 @@ inline std::vector<BadGltf> bad_gltf_files() {
              return as_text(make_glb(parts.json, parts.bin));
          }(),
          {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression attribute NORMAL: the Draco mesh has no attribute with id 9"}},
+        {"gltf_draco_bool_attribute", ".glb",
+         [] {
+             const GridMesh grid = grid_mesh(2);
+             const DracoGrid draco = draco_grid(grid, true);
+             const GltfParts parts = draco_grid_parts(draco, grid.positions.size(), grid.indices.size());
+             return as_text(make_glb(parts.json, parts.bin));
+         }(),
+         {"@: meshes[0] 'grid' primitives[0] KHR_draco_mesh_compression attribute TANGENT: the Draco attribute holds "
+          "bool values, which no glTF accessor holds"}},
         {"gltf_meshopt_stream_too_short", ".glb",
          [] {
              // The positions' stream (81 elements of 12 bytes) cut to 10 bytes; its real length becomes an unknown key.

@@ -6,21 +6,24 @@
 namespace tessera::test {
 
 DracoEncoded encode_draco_triangles(const float* positions, const float* normals, const float* uvs, const float* tangents,
-                                    const std::uint32_t* indices, std::size_t index_count) {
+                                    const std::uint32_t* indices, std::size_t index_count, bool bool_tangents) {
     draco::TriangleSoupMeshBuilder builder;
     const int faces = int(index_count / 3);
     builder.Start(faces);
     const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
     const int normal = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
     const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
-    const int tangent = builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32);
+    const int tangent =
+        builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, bool_tangents ? draco::DT_BOOL : draco::DT_FLOAT32);
+    static const std::uint8_t kBoolBytes[4] = {93, 1, 0, 200};
     for (int f = 0; f < faces; ++f) {
         const std::uint32_t* c = &indices[std::size_t(f) * 3];
         const draco::FaceIndex face(static_cast<std::uint32_t>(f));
         builder.SetAttributeValuesForFace(position, face, positions + 3 * c[0], positions + 3 * c[1], positions + 3 * c[2]);
         builder.SetAttributeValuesForFace(normal, face, normals + 3 * c[0], normals + 3 * c[1], normals + 3 * c[2]);
         builder.SetAttributeValuesForFace(uv, face, uvs + 2 * c[0], uvs + 2 * c[1], uvs + 2 * c[2]);
-        builder.SetAttributeValuesForFace(tangent, face, tangents + 4 * c[0], tangents + 4 * c[1], tangents + 4 * c[2]);
+        if (bool_tangents) builder.SetAttributeValuesForFace(tangent, face, kBoolBytes, kBoolBytes, kBoolBytes);
+        else builder.SetAttributeValuesForFace(tangent, face, tangents + 4 * c[0], tangents + 4 * c[1], tangents + 4 * c[2]);
     }
     const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
     draco::Encoder encoder;

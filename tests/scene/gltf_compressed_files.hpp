@@ -205,9 +205,9 @@ inline std::vector<std::uint8_t> meshopt_grid_glb(const GridMesh& grid, bool ind
 // ids of its POSITION, NORMAL, TEXCOORD_0 and TANGENT attributes.
 using DracoGrid = DracoEncoded;
 
-inline DracoGrid draco_grid(const GridMesh& grid) {
+inline DracoGrid draco_grid(const GridMesh& grid, bool bool_tangents = false) {
     return encode_draco_triangles(&grid.positions[0].x, &grid.normals[0].x, &grid.uvs[0].x, &grid.tangents[0].x,
-                                  grid.indices.data(), grid.indices.size());
+                                  grid.indices.data(), grid.indices.size(), bool_tangents);
 }
 
 // The grid as KHR_draco_mesh_compression writes it: accessors without buffer

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <memory>
+#include <string>
 
 #include <draco/compression/decode.h>
 
@@ -66,6 +67,12 @@ DecodedMesh decode_draco_mesh(const unsigned char* data, std::size_t size, const
         };
         const draco::PointAttribute* attribute = mesh->GetAttributeByUniqueId(request.unique_id);
         if (!attribute) return fail("the Draco mesh has no attribute with id " + std::to_string(request.unique_id));
+        // Only number types convert: Draco's conversion reads a bool attribute's
+        // bytes as C++ bools, and any byte but 0 and 1 is undefined behaviour there.
+        if (attribute->data_type() <= draco::DT_INVALID || attribute->data_type() >= draco::DT_BOOL)
+            return fail("the Draco attribute holds " +
+                        std::string(attribute->data_type() == draco::DT_BOOL ? "bool values" : "values of no number type") +
+                        ", which no glTF accessor holds");
         if (attribute->num_components() != request.components)
             return fail("the Draco attribute has " + std::to_string(attribute->num_components()) + " components, the accessor " +
                         std::to_string(request.components));
